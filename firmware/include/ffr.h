@@ -1,0 +1,317 @@
+/*
+ * ffr.h - public API of the fire-fighting robot navigation firmware.
+ *
+ * Portable C99: no heap, no mutable globals, single-precision float, no
+ * platform headers. All state lives in a caller-owned ffr_state_t; the
+ * firmware sees only hardware units (mV, ADC counts, encoder counts, ms).
+ *
+ *   ffr_config_default(&cfg);       // documented defaults, then tune
+ *   ffr_init(&st, &cfg);
+ *   every tick: fill ffr_inputs_t, ffr_step(&st, &in, &out), apply out.
+ *
+ * The Python harness mirrors the three I/O structs; ffr_layout() describes
+ * every field (name, offset, type) so a mismatched build is refused at load.
+ */
+#ifndef FFR_H
+#define FFR_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define FFR_VERSION_MAJOR 1u
+#define FFR_VERSION_MINOR 0u
+
+/* IR rangers, in the order of ffr_inputs_t.ir_mv (the paper's Fig. 6). */
+enum { FFR_IR_CF = 0, FFR_IR_LF = 1, FFR_IR_RF = 2, FFR_IR_LR = 3, FFR_IR_RR = 4, FFR_IR_COUNT = 5 };
+enum { FFR_LEFT = 0, FFR_RIGHT = 1 };
+
+/* ------------------------------------------------------------------ */
+/* Route program: how the robot gets from room to room, by its sensors. */
+/* ------------------------------------------------------------------ */
+
+typedef enum {
+    FFR_OP_END = 0,     /* end of program                                          */
+    FFR_OP_FOLLOW = 1,  /* drive, following the wall on `side`, until `event`      */
+    FFR_OP_TURN = 2,    /* turn in place by odometry: param = degrees, + = left    */
+    FFR_OP_FORWARD = 3, /* drive param mm by odometry, following the wall on side  */
+    FFR_OP_ROOM = 4,    /* enter the door ahead, scan, put out or leave: param=room */
+    FFR_OP_HOME = 5     /* drive (following side) to the home circle and stop in it */
+} ffr_op_t;
+
+typedef enum {
+    FFR_SIDE_LEFT = 0,
+    FFR_SIDE_RIGHT = 1,
+    FFR_SIDE_NONE = 2 /* hold heading by odometry */
+} ffr_side_t;
+
+typedef enum {
+    FFR_EV_FRONT = 0,  /* wall ahead closer than front_stop_mm                  */
+    FFR_EV_OPEN_L = 1, /* the left wall ends (a wall seen, then an opening)     */
+    FFR_EV_OPEN_R = 2, /* the right wall ends                                   */
+    FFR_EV_LINE = 3    /* a white line under the line sensor                    */
+} ffr_event_t;
+
+typedef struct {
+    uint8_t op;     /* ffr_op_t                       */
+    uint8_t side;   /* ffr_side_t (FOLLOW, FORWARD, HOME) */
+    uint8_t event;  /* ffr_event_t (FOLLOW)           */
+    uint8_t arg;    /* room number for ROOM           */
+    int16_t param;  /* degrees (TURN), mm (FORWARD)   */
+    int16_t reserved;
+} ffr_step_t;
+
+#define FFR_ROUTE_MAX 48
+#define FFR_ROOMS_MAX 4
+
+/* ------------------------------------------------------------------ */
+/* Configuration: everything a student would tune.                      */
+/* ------------------------------------------------------------------ */
+typedef struct {
+    /* geometry */
+    float wheel_radius_mm;       /* drive wheel (sprocket) radius            */
+    float track_width_mm;        /* distance between the drive wheels        */
+    float encoder_ticks_per_rev; /* encoder counts per wheel revolution      */
+    float body_front_mm;         /* origin (axle midpoint) to front face     */
+    float body_half_width_mm;
+    float ir_x_mm[FFR_IR_COUNT]; /* ranger poses in the body frame           */
+    float ir_y_mm[FFR_IR_COUNT];
+    float ir_angle_deg[FFR_IR_COUNT];
+    float line_sensor_x_mm;      /* line sensor ahead of the origin          */
+
+    /* GP2D12 inverse calibration: d = k / (mV - offset) - d0, valid range */
+    float ir_k_mv_mm;
+    float ir_offset_mv;
+    float ir_d0_mm;
+    float ir_min_mm;
+    float ir_max_mm;
+    float ir_min_mv;             /* below this the ranger sees nothing        */
+
+    /* motor speed control: pwm = ff_gain*v + ff_offset + kp*e + ki*integral */
+    float ff_gain_permille_per_mm_s;
+    float ff_offset_permille;
+    float speed_kp;              /* per mille per mm/s                         */
+    float speed_ki;              /* per mille per mm of position error          */
+    float accel_mm_s2;           /* speed ramp                                 */
+    int16_t pwm_limit;           /* per mille                                  */
+    int16_t reserved0;
+
+    /* speeds */
+    float cruise_speed_mm_s;
+    float room_speed_mm_s;       /* entering, leaving, moving inside rooms     */
+    float approach_speed_mm_s;
+    float turn_rate_deg_s;
+    float scan_rate_deg_s;
+
+    /* corridor navigation */
+    float wall_target_mm;        /* wanted distance origin -> followed wall    */
+    float wall_kp_deg_per_mm;    /* heading offset per mm of distance error    */
+    float wall_max_deg;          /* clamp of that offset                       */
+    float heading_kp;            /* yaw rate (deg/s) per deg of heading error  */
+    float wall_align_gain;       /* 0..1, how fast the wall corrects heading   */
+    float front_stop_mm;         /* FRONT event: wall ahead this close (origin) */
+    float front_slow_mm;         /* start slowing down for a wall ahead        */
+    float open_mm;               /* a side ranger beyond this sees no wall     */
+    float open_confirm_mm;       /* travel the opening must persist            */
+    float wall_seen_mm;          /* travel a wall must be seen before it may end */
+    float hallway_half_mm;       /* contest hallways are 46 cm: turn in the middle */
+    float turn_tol_deg;
+
+    /* lines, rooms */
+    float line_holdoff_mm;       /* one line per this much travel              */
+    float room_line_max_mm;      /* give up looking for the doorway line       */
+    float room_entry_mm;         /* drive in this far past the doorway line    */
+    float room_exit_mm;          /* and out this far past it                   */
+    float home_advance_mm;       /* past the home circle line, then stop       */
+
+    /* flame */
+    float flame_detect;          /* counts, sum of both sensors: a flame seen  */
+    float flame_out;             /* counts, sum below this: flame is out       */
+    float flame_steer_deg;       /* heading offset for full left/right imbalance */
+    float approach_stop_mm;      /* CF closer than this: stop approaching      */
+    uint32_t fan_timeout_ms;     /* fans on at most this long per attempt      */
+    uint32_t flame_out_confirm_ms;
+    uint32_t verify_ms;          /* fans off, watch the flame this long        */
+    uint8_t fan_attempts;
+    uint8_t scan_dir;            /* 0 = counter-clockwise, 1 = clockwise       */
+    uint8_t route_len;
+    uint8_t reserved1;
+
+    ffr_step_t route[FFR_ROUTE_MAX];
+    uint8_t return_start[FFR_ROOMS_MAX]; /* route index of the way home from room k+1 */
+} ffr_config_t;
+
+/* ------------------------------------------------------------------ */
+/* One tick of inputs and outputs (hardware units).                     */
+/* ------------------------------------------------------------------ */
+typedef struct {
+    uint32_t t_ms;               /* tick time                                  */
+    uint32_t seq;                /* sequence number, echoed in the outputs     */
+    int32_t enc[2];              /* cumulative encoder counts, left, right     */
+    uint16_t ir_mv[FFR_IR_COUNT];/* GP2D12 outputs, mV                         */
+    uint16_t flame[2];           /* flame sensors, ADC counts, left, right     */
+    uint8_t line;                /* 1 = white under the line sensor            */
+    uint8_t start;               /* 1 = go                                     */
+} ffr_inputs_t;
+
+typedef enum {
+    FFR_ST_IDLE = 0,
+    FFR_ST_FOLLOW = 1,
+    FFR_ST_TURN = 2,
+    FFR_ST_FORWARD = 3,
+    FFR_ST_ENTER = 4,
+    FFR_ST_SCAN = 5,
+    FFR_ST_APPROACH = 6,
+    FFR_ST_EXTINGUISH = 7,
+    FFR_ST_VERIFY = 8,
+    FFR_ST_TO_DOOR = 9,
+    FFR_ST_EXIT = 10,
+    FFR_ST_HOMING = 11,
+    FFR_ST_DONE = 12,
+    FFR_ST_FAILED = 13,
+    FFR_ST_COUNT = 14
+} ffr_state_code_t;
+
+#define FFR_FLAG_FLAME_SEEN 0x01u
+#define FFR_FLAG_EXTINGUISHED 0x02u
+#define FFR_FLAG_IN_ROOM 0x04u
+#define FFR_FLAG_DONE 0x08u
+#define FFR_FLAG_FAILED 0x10u
+
+typedef struct {
+    uint32_t seq;                /* = inputs.seq                               */
+    int16_t pwm[2];              /* per mille, left, right                     */
+    uint8_t fan;                 /* 1 = fans on                                */
+    uint8_t state;               /* ffr_state_code_t                           */
+    uint8_t room;                /* room being searched (0 = none)             */
+    uint8_t rooms_searched;
+    uint8_t line_count;          /* white lines crossed                        */
+    uint8_t flags;               /* FFR_FLAG_*                                 */
+    uint8_t step;                /* route program counter                      */
+    uint8_t fail_code;           /* why FAILED, 0 otherwise                    */
+    int16_t odo_x_mm;            /* odometry estimate, start frame             */
+    int16_t odo_y_mm;
+    int16_t odo_heading_cdeg;
+    int16_t reserved;
+} ffr_outputs_t;
+
+/* ------------------------------------------------------------------ */
+/* Behaviour states (one per file in src/).                             */
+/* ------------------------------------------------------------------ */
+typedef struct {
+    int32_t last_enc[2];
+    uint8_t primed;
+    float x_mm, y_mm, heading_rad; /* heading unwrapped                       */
+    float dist_mm;                 /* path length of the origin               */
+    float v_mm_s[2];               /* filtered wheel speeds                   */
+    float dpos_mm[2];              /* wheel travel in the last tick           */
+} ffr_odometry_t;
+
+typedef struct {
+    float v_ref[2];                /* ramped speed references, mm/s           */
+    float pos_err_mm[2];           /* integral of (reference - measured)      */
+} ffr_speed_ctl_t;
+
+typedef struct {
+    uint8_t level;                 /* debounced line level                    */
+    uint8_t count;
+    float last_edge_mm;            /* odometry distance at the last edge      */
+    uint8_t edge;                  /* 1 on the tick of a new line             */
+} ffr_line_counter_t;
+
+typedef struct {
+    uint8_t seen[2];               /* side wall seen long enough (L, R)       */
+    float seen_mm[2];              /* travel with the wall seen               */
+    float open_mm[2];              /* travel with the side open               */
+    float open_at_mm[2];           /* odometry distance where it opened       */
+} ffr_openings_t;
+
+typedef struct {
+    float heading_ref_rad;         /* corridor heading the robot should hold  */
+    float target_rad;              /* turn target                             */
+    float start_mm;                /* odometry distance at step start         */
+    float goal_mm;                 /* distance goal (FORWARD, wrap-around)    */
+    uint8_t phase;
+    uint8_t pc;                    /* route program counter                   */
+} ffr_route_state_t;
+
+typedef struct {
+    uint8_t phase;
+    uint8_t room;
+    uint8_t attempts;
+    uint8_t flame_found;
+    float entry_heading_rad;
+    float scan_x_mm, scan_y_mm;    /* odometry pose where the scan was made   */
+    float start_heading_rad;
+    float best_signal;
+    float best_heading_rad;
+    float phase_start_mm;
+    uint32_t phase_start_ms;
+    uint32_t below_since_ms;
+} ffr_room_state_t;
+
+typedef struct {
+    ffr_config_t cfg;
+    ffr_odometry_t odo;
+    ffr_speed_ctl_t speed;
+    ffr_line_counter_t lines;
+    ffr_openings_t open;
+    ffr_route_state_t route;
+    ffr_room_state_t room;
+    float ir_mm[FFR_IR_COUNT];     /* last calibrated ranges (ir_max_mm+1 = none) */
+    uint32_t t_ms;
+    uint32_t last_t_ms;
+    uint8_t state;                 /* ffr_state_code_t                        */
+    uint8_t started;
+    uint8_t flags;
+    uint8_t rooms_searched;
+    uint8_t returning;             /* executing a way home                    */
+    uint8_t fail_code;
+    uint8_t fan;
+    uint8_t reserved;
+    float cmd_v_mm_s;              /* motion command of this tick             */
+    float cmd_w_rad_s;
+} ffr_state_t;
+
+/* Failure codes in ffr_outputs_t.fail_code. */
+enum {
+    FFR_FAIL_NONE = 0,
+    FFR_FAIL_NO_FLAME = 1,      /* route ended, no flame found               */
+    FFR_FAIL_NOT_OUT = 2,       /* fans did not put the flame out            */
+    FFR_FAIL_NO_LINE = 3,       /* doorway line not found                    */
+    FFR_FAIL_BAD_ROUTE = 4,     /* route program invalid                     */
+    FFR_FAIL_LOST_FLAME = 5
+};
+
+/* ------------------------------------------------------------------ */
+/* API                                                                  */
+/* ------------------------------------------------------------------ */
+void ffr_config_default(ffr_config_t *cfg);
+void ffr_init(ffr_state_t *st, const ffr_config_t *cfg);
+void ffr_step(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out);
+/* Batch step for sweeps: n independent robots. */
+void ffr_step_many(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out, uint32_t n);
+
+/* Layout self-description. */
+typedef enum { FFR_T_U8 = 1, FFR_T_I16 = 2, FFR_T_U16 = 3, FFR_T_I32 = 4, FFR_T_U32 = 5, FFR_T_F32 = 6 } ffr_type_t;
+typedef enum { FFR_S_INPUTS = 0, FFR_S_OUTPUTS = 1, FFR_S_CONFIG = 2, FFR_S_STEP = 3 } ffr_struct_id_t;
+
+typedef struct {
+    const char *name;
+    uint16_t struct_id; /* ffr_struct_id_t */
+    uint16_t type;      /* ffr_type_t      */
+    uint16_t offset;
+    uint16_t count;     /* array length (1 for scalars) */
+} ffr_field_t;
+
+uint32_t ffr_version(void);                  /* major << 16 | minor          */
+uint32_t ffr_sizeof(uint32_t struct_id);     /* 0 for an unknown id; 99 = state */
+const ffr_field_t *ffr_layout(uint32_t *count);
+uint32_t ffr_layout_hash(void);              /* FNV-1a over the layout table */
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* FFR_H */

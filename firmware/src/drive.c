@@ -1,0 +1,52 @@
+/*
+ * Corridor driving, shared by the route steps: forward at a speed set by the
+ * proximity sensors, steering by the wall on the preferred side, else the
+ * other side, else the heading held by odometry. A wall seen by two rangers
+ * also re-aligns the held heading, so odometry drift never accumulates
+ * between walls.
+ */
+#include "ffr_internal.h"
+
+void ffr_stop(ffr_state_t *st)
+{
+    st->cmd_v_mm_s = 0.0f;
+    st->cmd_w_rad_s = 0.0f;
+}
+
+void ffr_drive_heading(ffr_state_t *st, float heading, float speed)
+{
+    st->cmd_v_mm_s = speed;
+    st->cmd_w_rad_s = ffr_heading_hold_yaw(&st->cfg, st->odo.heading_rad, heading);
+}
+
+void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    ffr_wall_t w;
+    int use = -1;
+    float v = ffr_proximity_speed(cfg, st->ir_mm, speed);
+    if (side == FFR_SIDE_LEFT || side == FFR_SIDE_RIGHT) {
+        w = ffr_wall_estimate(cfg, st->ir_mm, side);
+        if (w.valid && w.dist_mm < cfg->open_mm) {
+            use = side;
+        } else {
+            w = ffr_wall_estimate(cfg, st->ir_mm, 1 - side);
+            if (w.valid && w.dist_mm < cfg->open_mm) {
+                use = 1 - side;
+            }
+        }
+    }
+    if (use >= 0) {
+        if (w.angle_valid) {
+            float wall_dir = st->odo.heading_rad + w.angle_rad;
+            float diff = ffr_wrap_pi(wall_dir - st->route.heading_ref_rad);
+            if (ffr_absf(diff) < 10.0f * FFR_DEG) {
+                st->route.heading_ref_rad += cfg->wall_align_gain * diff;
+            }
+        }
+        st->cmd_v_mm_s = v;
+        st->cmd_w_rad_s = ffr_wall_follow_yaw(cfg, &w, use);
+    } else {
+        ffr_drive_heading(st, st->route.heading_ref_rad, v);
+    }
+}

@@ -1,0 +1,96 @@
+/* Internal interfaces between the firmware's behaviours (one file each). */
+#ifndef FFR_INTERNAL_H
+#define FFR_INTERNAL_H
+
+#include "ffr.h"
+
+#define FFR_PI 3.14159265358979f
+#define FFR_DEG 0.0174532925199433f /* rad per degree */
+
+/* fmath.c: portable math, bit-identical on glibc and newlib targets. */
+float ffr_absf(float x);
+float ffr_clampf(float x, float lo, float hi);
+float ffr_wrap_pi(float a);
+float ffr_sinf(float x);
+float ffr_cosf(float x);
+float ffr_atan2f(float y, float x);
+float ffr_sqrtf(float x);
+
+/* ir_calibration.c: GP2D12 mV -> distance from the sensor, mm. */
+#define FFR_IR_NONE(cfg) ((cfg)->ir_max_mm + 1.0f)
+float ffr_ir_mv_to_mm(const ffr_config_t *cfg, uint16_t mv);
+int ffr_ir_valid(const ffr_config_t *cfg, float d_mm);
+
+/* odometry.c */
+void ffr_odometry_reset(ffr_odometry_t *o);
+void ffr_odometry_update(ffr_odometry_t *o, const ffr_config_t *cfg, const int32_t enc[2], float dt_s);
+
+/* speed_control.c: wheel speed loops, (v, w) -> PWM. */
+void ffr_speed_reset(ffr_speed_ctl_t *s);
+void ffr_speed_control(ffr_speed_ctl_t *s, const ffr_config_t *cfg, const ffr_odometry_t *o,
+                       float v_mm_s, float w_rad_s, float dt_s, int16_t pwm[2]);
+
+/* proximity.c: forward speed from the front ranger. */
+float ffr_front_distance(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT]);
+float ffr_proximity_speed(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float cruise);
+
+/* wall_follow.c (Fig. 10): wall line from two rangers on one side. */
+typedef struct {
+    uint8_t valid;       /* distance known                          */
+    uint8_t angle_valid; /* both rangers saw the same straight wall  */
+    float dist_mm;       /* origin to the wall line                  */
+    float angle_rad;     /* wall direction relative to the heading   */
+} ffr_wall_t;
+ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], int side);
+/* Yaw rate (rad/s) that brings the robot to wall_target_mm, parallel to the wall. */
+float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side);
+/* Yaw rate (rad/s) that holds heading_ref. */
+float ffr_heading_hold_yaw(const ffr_config_t *cfg, float heading, float heading_ref);
+
+/* wall_cases.c (Fig. 9): the six wall cases and the turn each asks for. */
+typedef enum {
+    FFR_CASE_CORRIDOR = 0,     /* walls both sides, open ahead: go on      */
+    FFR_CASE_CORNER_LEFT = 1,  /* wall ahead and right: turn left          */
+    FFR_CASE_CORNER_RIGHT = 2, /* wall ahead and left: turn right          */
+    FFR_CASE_T = 3,            /* wall ahead, both sides open: preference  */
+    FFR_CASE_DEAD_END = 4,     /* walls ahead, left, right: turn around    */
+    FFR_CASE_BRANCH_LEFT = 5,  /* open ahead and left: preference or on    */
+    FFR_CASE_BRANCH_RIGHT = 6, /* open ahead and right: preference or on   */
+    FFR_CASE_OPEN = 7          /* nothing seen anywhere                    */
+} ffr_wall_case_t;
+ffr_wall_case_t ffr_wall_case(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT]);
+/* Degrees to turn (+ left) for a case; prefer = FFR_SIDE_LEFT/RIGHT/NONE. */
+int16_t ffr_wall_case_turn(ffr_wall_case_t c, uint8_t prefer);
+
+/* turn.c: turning in place by odometry. */
+float ffr_turn_yaw(const ffr_config_t *cfg, float heading, float target);
+int ffr_turn_done(const ffr_config_t *cfg, const ffr_odometry_t *o, float target);
+
+/* line_counter.c */
+void ffr_lines_reset(ffr_line_counter_t *l);
+void ffr_lines_update(ffr_line_counter_t *l, const ffr_config_t *cfg, uint8_t line, float dist_mm);
+
+/* openings.c: a side wall seen, then ending. */
+void ffr_openings_reset(ffr_openings_t *op);
+void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT],
+                         float dist_mm, float step_mm);
+int ffr_opening(const ffr_openings_t *op, const ffr_config_t *cfg, int side);
+
+/* room.c: the room task (Fig. 11) and the flame task (Fig. 12). */
+void ffr_room_begin(ffr_state_t *st, uint8_t room);
+/* Returns 1 when the robot has left the room. */
+int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in);
+
+/* drive.c: corridor driving shared by the route steps. */
+void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed);
+void ffr_drive_heading(ffr_state_t *st, float heading, float speed);
+void ffr_stop(ffr_state_t *st);
+
+/* route.c: the route program interpreter. */
+void ffr_route_begin(ffr_state_t *st, uint8_t pc);
+void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in);
+
+/* mission.c */
+void ffr_fail(ffr_state_t *st, uint8_t code);
+
+#endif

@@ -1,0 +1,24 @@
+/* Moving forward by the proximity sensors: slow down as a wall comes ahead. */
+#include "ffr_internal.h"
+
+float ffr_front_distance(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT])
+{
+    float d = ir_mm[FFR_IR_CF];
+    if (!ffr_ir_valid(cfg, d)) {
+        return 1.0e6f;
+    }
+    return d + cfg->ir_x_mm[FFR_IR_CF]; /* measured from the origin */
+}
+
+float ffr_proximity_speed(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float cruise)
+{
+    float d = ffr_front_distance(cfg, ir_mm);
+    float span = cfg->front_slow_mm - cfg->front_stop_mm;
+    float k;
+    if (span <= 1.0f) {
+        return cruise;
+    }
+    k = ffr_clampf((d - cfg->front_stop_mm) / span, 0.0f, 1.0f);
+    /* never crawl: the front event stops the robot, not a vanishing speed */
+    return cruise * (0.35f + 0.65f * k);
+}

@@ -1,0 +1,178 @@
+/*
+ * The route program: a short list of steps in the configuration that takes
+ * the robot from home through the rooms by what its sensors see ("follow the
+ * right wall until the left one ends, turn left, search the room"), never by
+ * stored arena coordinates. Each step ends on a sensed event or an odometry
+ * distance measured from one.
+ */
+#include "ffr_internal.h"
+
+enum { PH_DRIVE = 0, PH_WRAP = 1 };
+
+static const ffr_step_t *cur(const ffr_state_t *st) { return &st->cfg.route[st->route.pc]; }
+
+static void begin_current(ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    const ffr_step_t *s;
+    if (st->route.pc >= cfg->route_len || st->route.pc >= FFR_ROUTE_MAX) {
+        ffr_fail(st, st->returning ? FFR_FAIL_BAD_ROUTE : FFR_FAIL_NO_FLAME);
+        return;
+    }
+    s = cur(st);
+    st->route.phase = PH_DRIVE;
+    st->route.start_mm = st->odo.dist_mm;
+    ffr_openings_reset(&st->open);
+    switch (s->op) {
+    case FFR_OP_FOLLOW:
+        st->state = FFR_ST_FOLLOW;
+        break;
+    case FFR_OP_TURN: {
+        int16_t deg = s->param;
+        if (deg == 0) {
+            deg = ffr_wall_case_turn(ffr_wall_case(cfg, st->ir_mm), s->side);
+        }
+        st->route.target_rad = st->route.heading_ref_rad + (float)deg * FFR_DEG;
+        st->state = FFR_ST_TURN;
+        break;
+    }
+    case FFR_OP_FORWARD:
+        st->route.goal_mm = st->odo.dist_mm + (float)s->param;
+        st->state = FFR_ST_FORWARD;
+        break;
+    case FFR_OP_ROOM:
+        if (s->arg < 1 || s->arg > FFR_ROOMS_MAX) {
+            ffr_fail(st, FFR_FAIL_BAD_ROUTE);
+            return;
+        }
+        ffr_room_begin(st, s->arg);
+        break;
+    case FFR_OP_HOME:
+        st->state = FFR_ST_HOMING;
+        break;
+    case FFR_OP_END:
+    default:
+        ffr_fail(st, st->returning ? FFR_FAIL_BAD_ROUTE : FFR_FAIL_NO_FLAME);
+        break;
+    }
+}
+
+void ffr_route_begin(ffr_state_t *st, uint8_t pc)
+{
+    st->route.pc = pc;
+    begin_current(st);
+}
+
+static void next(ffr_state_t *st)
+{
+    st->route.pc = (uint8_t)(st->route.pc + 1u);
+    begin_current(st);
+}
+
+static int event_fired(ffr_state_t *st, const ffr_step_t *s)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    switch (s->event) {
+    case FFR_EV_FRONT:
+        return ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm;
+    case FFR_EV_OPEN_L:
+        return ffr_opening(&st->open, cfg, FFR_SIDE_LEFT);
+    case FFR_EV_OPEN_R:
+        return ffr_opening(&st->open, cfg, FFR_SIDE_RIGHT);
+    case FFR_EV_LINE:
+        return st->lines.edge;
+    default:
+        return 1;
+    }
+}
+
+void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    const ffr_step_t *s = cur(st);
+    (void)in;
+    switch (s->op) {
+    case FFR_OP_FOLLOW:
+        if (st->route.phase == PH_DRIVE) {
+            if (event_fired(st, s)) {
+                if (s->event == FFR_EV_OPEN_L || s->event == FFR_EV_OPEN_R) {
+                    /* go on until the origin is in the middle of the opening */
+                    int side = s->event == FFR_EV_OPEN_L ? FFR_SIDE_LEFT : FFR_SIDE_RIGHT;
+                    st->route.goal_mm = st->open.open_at_mm[side] + cfg->hallway_half_mm;
+                    st->route.phase = PH_WRAP;
+                } else {
+                    ffr_stop(st);
+                    next(st);
+                    return;
+                }
+            } else {
+                ffr_drive_corridor(st, s->side, cfg->cruise_speed_mm_s);
+                return;
+            }
+        }
+        if (st->odo.dist_mm >= st->route.goal_mm
+            || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
+            ffr_stop(st);
+            next(st);
+            return;
+        }
+        /* slow down into the turn so the stop is short */
+        ffr_drive_heading(st, st->route.heading_ref_rad,
+                          ffr_clampf(2.0f * (st->route.goal_mm - st->odo.dist_mm) + 60.0f, 60.0f,
+                                     cfg->cruise_speed_mm_s));
+        return;
+    case FFR_OP_TURN:
+        ffr_stop(st);
+        st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, st->route.target_rad);
+        if (ffr_turn_done(cfg, &st->odo, st->route.target_rad)) {
+            st->route.heading_ref_rad = st->route.target_rad;
+            ffr_stop(st);
+            next(st);
+        }
+        return;
+    case FFR_OP_FORWARD: {
+        float left = st->route.goal_mm - st->odo.dist_mm;
+        if (left <= 0.0f || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
+            ffr_stop(st);
+            next(st);
+            return;
+        }
+        ffr_drive_corridor(st, s->side, ffr_clampf(2.0f * left + 60.0f, 60.0f, cfg->cruise_speed_mm_s));
+        return;
+    }
+    case FFR_OP_ROOM:
+        if (ffr_room_step(st, in)) {
+            if (st->flags & FFR_FLAG_EXTINGUISHED) {
+                st->returning = 1;
+                ffr_route_begin(st, cfg->return_start[s->arg - 1]);
+            } else {
+                next(st);
+            }
+        }
+        return;
+    case FFR_OP_HOME:
+        if (st->route.phase == PH_DRIVE) {
+            if (st->lines.edge) {
+                st->route.goal_mm = st->odo.dist_mm + cfg->home_advance_mm;
+                st->route.phase = PH_WRAP;
+            } else {
+                ffr_drive_corridor(st, s->side, cfg->cruise_speed_mm_s);
+                return;
+            }
+        }
+        if (st->odo.dist_mm >= st->route.goal_mm
+            || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
+            ffr_stop(st);
+            st->state = FFR_ST_DONE;
+            st->flags |= FFR_FLAG_DONE;
+            return;
+        }
+        ffr_drive_heading(st, st->route.heading_ref_rad,
+                          ffr_clampf(2.0f * (st->route.goal_mm - st->odo.dist_mm) + 60.0f, 60.0f,
+                                     cfg->cruise_speed_mm_s));
+        return;
+    default:
+        ffr_fail(st, FFR_FAIL_BAD_ROUTE);
+        return;
+    }
+}

@@ -1,0 +1,80 @@
+/*
+ * Wall following with two rangers on one side (the paper's Fig. 10). Each
+ * ranger's hit point is placed in the body frame from its mounting pose; the
+ * two points give the wall line: its distance from the origin and its angle
+ * to the heading. One valid ranger still gives the distance (wall assumed
+ * parallel), so the robot keeps following through short gaps.
+ */
+#include "ffr_internal.h"
+
+static void hit_point(const ffr_config_t *cfg, int i, float d, float *px, float *py)
+{
+    float a = cfg->ir_angle_deg[i] * FFR_DEG;
+    *px = cfg->ir_x_mm[i] + d * ffr_cosf(a);
+    *py = cfg->ir_y_mm[i] + d * ffr_sinf(a);
+}
+
+ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], int side)
+{
+    ffr_wall_t w;
+    int f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
+    int r = side == FFR_SIDE_LEFT ? FFR_IR_LR : FFR_IR_RR;
+    int fv = ffr_ir_valid(cfg, ir_mm[f]);
+    int rv = ffr_ir_valid(cfg, ir_mm[r]);
+    float fx = 0.0f, fy = 0.0f, rx = 0.0f, ry = 0.0f;
+    w.valid = 0;
+    w.angle_valid = 0;
+    w.dist_mm = 0.0f;
+    w.angle_rad = 0.0f;
+    if (fv) {
+        hit_point(cfg, f, ir_mm[f], &fx, &fy);
+    }
+    if (rv) {
+        hit_point(cfg, r, ir_mm[r], &rx, &ry);
+    }
+    if (fv && rv) {
+        float wx = fx - rx;
+        float wy = fy - ry;
+        float len = ffr_sqrtf(wx * wx + wy * wy);
+        float ang;
+        if (len > 50.0f && wx > 0.0f) {
+            ang = ffr_atan2f(wy, wx);
+            /* a steep line is a corner or two different walls, not one wall */
+            if (ffr_absf(ang) < 35.0f * FFR_DEG) {
+                w.valid = 1;
+                w.angle_valid = 1;
+                w.angle_rad = ang;
+                w.dist_mm = ffr_absf(wx * ry - wy * rx) / len;
+                return w;
+            }
+        }
+    }
+    /* one ranger (the front one preferred): distance only */
+    if (fv && (!rv || ffr_absf(fy) <= ffr_absf(ry))) {
+        w.valid = 1;
+        w.dist_mm = ffr_absf(fy);
+    } else if (rv) {
+        w.valid = 1;
+        w.dist_mm = ffr_absf(ry);
+    }
+    return w;
+}
+
+float ffr_heading_hold_yaw(const ffr_config_t *cfg, float heading, float heading_ref)
+{
+    float err = ffr_wrap_pi(heading_ref - heading);
+    float lim = cfg->turn_rate_deg_s * FFR_DEG;
+    return ffr_clampf(cfg->heading_kp * err, -lim, lim);
+}
+
+float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side)
+{
+    /* wanted heading relative to the wall: toward it when too far */
+    float sign = side == FFR_SIDE_LEFT ? 1.0f : -1.0f;
+    float lim = cfg->turn_rate_deg_s * FFR_DEG;
+    float want = ffr_clampf(cfg->wall_kp_deg_per_mm * (w->dist_mm - cfg->wall_target_mm),
+                            -cfg->wall_max_deg, cfg->wall_max_deg) * FFR_DEG * sign;
+    /* the robot's heading relative to the wall is -angle */
+    float err = want + w->angle_rad;
+    return ffr_clampf(cfg->heading_kp * err, -lim, lim);
+}

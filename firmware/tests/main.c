@@ -1,0 +1,19 @@
+#include "unit.h"
+
+unit_tally_t unit_tally;
+
+int main(void)
+{
+    suite_fmath();
+    suite_ir_calibration();
+    suite_odometry();
+    suite_speed_control();
+    suite_wall_follow();
+    suite_wall_cases();
+    suite_line_counter();
+    suite_openings();
+    suite_mission();
+    suite_layout();
+    printf("firmware: %d passed, %d failed\n", unit_tally.passed, unit_tally.failed);
+    return unit_tally.failed == 0 ? 0 : 1;
+}

@@ -1,0 +1,27 @@
+#include <string.h>
+
+#include "ffr.h"
+#include "unit.h"
+
+void suite_layout(void)
+{
+    uint32_t n = 0, i;
+    const ffr_field_t *f = ffr_layout(&n);
+    int found_pwm = 0;
+    CHECK(n > 20u);
+    CHECK(ffr_sizeof(FFR_S_INPUTS) == sizeof(ffr_inputs_t));
+    CHECK(ffr_sizeof(FFR_S_OUTPUTS) == sizeof(ffr_outputs_t));
+    CHECK(ffr_sizeof(FFR_S_CONFIG) == sizeof(ffr_config_t));
+    CHECK(ffr_sizeof(77u) == 0u);
+    for (i = 0; i < n; ++i) {
+        CHECK(f[i].offset < ffr_sizeof(f[i].struct_id));
+        if (f[i].struct_id == FFR_S_OUTPUTS && strcmp(f[i].name, "pwm") == 0) {
+            found_pwm = 1;
+            CHECK(f[i].count == 2 && f[i].type == FFR_T_I16);
+        }
+    }
+    CHECK(found_pwm);
+    CHECK(ffr_layout_hash() == ffr_layout_hash());
+    CHECK(ffr_layout_hash() != 0u);
+    CHECK(ffr_version() == ((FFR_VERSION_MAJOR << 16) | FFR_VERSION_MINOR));
+}
