@@ -1,0 +1,86 @@
+"""Flame sensors: the paper's intensity model (eqs. 8, 9, Fig. 8) and the ADC output.
+
+I = 0.0125 * K(dθ) / R^2 foot-candles (eq. 9), where
+
+* R (eq. 8) is the distance from the sensor (not the robot's centre) to the
+  flame. We use the 3-D distance, including the small height difference
+  between sensor and flame, and clamp it to ``r_min`` so a sensor touching
+  the candle does not divide by ~0 (the ADC saturates long before).
+* K(dθ) is the angular coefficient of the paper's Fig. 8: 1 on the sensor's
+  axis, falling smoothly to 0 at ±``k_half_width_deg`` (60°). We use a raised
+  cosine, K = (1 + cos(π dθ / 60°)) / 2: it has zero slope on the axis and at
+  the edge (no kinks for the firmware's peak search to lock on), K = 0.5 at
+  ±30°, which matches the ±30° viewing half-angle of common IR
+  phototransistor flame modules, and K = 0 beyond 60°.
+  dθ is the horizontal angle between the sensor's aim and the direction from
+  the sensor to the flame.
+
+Walls are 33 cm tall and the flame about 17.5 cm high, so any wall edge
+between sensor and flame blocks the light completely.
+
+ADC output: counts = clip(round(gain * I) + dark, 0, 2^adc_bits - 1). With
+gain 12000 counts/fc and dark 40 counts, a flame on axis at 20 cm
+(I = 0.3125 fc) reads 3790 of 4095 (93% of full scale, so the firmware can
+still see it grow a little); at 1 m it reads 190, at 2 m 78.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numba as nb
+import numpy as np
+
+from sim_plant.geometry import segment_blocked
+
+INTENSITY_COEFF = 0.0125  # foot-candles * m^2, the paper's eq. (9)
+
+
+@dataclass(frozen=True)
+class FlameModel:
+    gain: float = 12000.0  # ADC counts per foot-candle
+    dark: int = 40  # counts with no flame in view (offset of the amplifier)
+    k_half_width_deg: float = 60.0  # K falls to 0 at this angle off axis
+    r_min: float = 0.02  # m, R is clamped to this
+
+
+@nb.njit(cache=True)
+def flame_k(dtheta: float, half_width: float) -> float:
+    """Angular coefficient K(dθ) (dθ, half_width in rad): raised cosine, 0 beyond half_width."""
+    a = abs(dtheta)
+    if a >= half_width:
+        return 0.0
+    return 0.5 * (1.0 + math.cos(math.pi * a / half_width))
+
+
+@nb.njit(cache=True)
+def flame_intensity(r: float, dtheta: float, half_width: float, r_min: float) -> float:
+    """Eq. (9): foot-candles at distance r (m), dθ (rad) off the sensor's axis."""
+    r = max(r, r_min)
+    return INTENSITY_COEFF * flame_k(dtheta, half_width) / (r * r)
+
+
+@nb.njit(cache=True)
+def flame_sensor_fc(x: float, y: float, c: float, s: float, bx: float, by: float, bz: float,
+                    aim: float, theta: float, fx: float, fy: float, fz: float,
+                    edges: np.ndarray, half_width: float, r_min: float) -> float:
+    """Light (fc) on a sensor at body (bx, by, bz) aimed at ``aim`` rad, robot at (x, y, θ).
+
+    ``c``, ``s`` are cos θ, sin θ; (fx, fy, fz) is the flame. 0 when a wall is in between.
+    """
+    px = x + c * bx - s * by
+    py = y + s * bx + c * by
+    dx = fx - px
+    dy = fy - py
+    dz = fz - bz
+    dth = math.atan2(dy, dx) - (theta + aim)
+    dth = (dth + math.pi) % (2.0 * math.pi) - math.pi
+    k = flame_k(dth, half_width)
+    if k == 0.0:
+        return 0.0
+    if segment_blocked(px, py, fx, fy, edges):
+        return 0.0
+    r = math.sqrt(dx * dx + dy * dy + dz * dz)
+    r = max(r, r_min)
+    return INTENSITY_COEFF * k / (r * r)

@@ -1,0 +1,169 @@
+"""Sharp GP2D12 infrared ranger: distance -> output voltage, and the ray-cast measurement.
+
+The curve (``distance_to_mv``), in four pieces:
+
+* 10-80 cm: the datasheet's typical table, interpolated by a monotone
+  piecewise-cubic Hermite (PCHIP, Fritsch-Carlson slopes) in ``u = 1/(d + 4 cm)``.
+  The sensor is close to linear in that variable (the common fit is
+  V = 33.2/(d_cm + 4) + 0.015), so the cubic pieces are nearly straight and
+  never overshoot; the curve passes exactly through every table point.
+* 8-10 cm: the top of the fold-back. A cubic Hermite from the peak
+  (8 cm, 2.60 V, slope 0) to the table's 10 cm point with the table curve's
+  own slope there, so the curve is smooth at 10 cm. The 2.60 V / 8 cm peak is
+  read off the datasheet's graph; the cubic stays monotone for any peak above
+  2.57 V (Fritsch-Carlson bound, given the 10 cm slope of -18 V/m).
+* 0-8 cm: fold-back. V = V_peak * q * (2 - q), q = d / 8 cm: a parabola from
+  0 V at contact up to the peak with zero slope there. Below 10 cm the output
+  is thus ambiguous with a farther wall (5 cm reads like ~11.5 cm), as on the
+  real part.
+* beyond 80 cm: V = V_floor + (V_80 - V_floor) * exp(-(d - 80 cm) / L), with
+  the floor at 0.30 V (the "no object" reading, inside the datasheet's
+  0.25-0.55 V band at 80 cm) and L chosen so the slope is continuous at 80 cm
+  (L ~ 0.21 m, so 1.0 m reads ~0.345 V and 1.5 m ~0.304 V).
+
+The measurement: one ray from the sensor's pose to the nearest wall surface,
+made once per measurement period (38.3 ms) and held in between.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numba as nb
+import numpy as np
+
+from sim_plant.geometry import point_in_convex, ray_cast
+
+# Datasheet typical curve (distance m, output V).
+DATASHEET_TABLE: tuple[tuple[float, float], ...] = (
+    (0.10, 2.45), (0.12, 2.125), (0.14, 1.86), (0.16, 1.66), (0.18, 1.52),
+    (0.20, 1.38), (0.25, 1.14), (0.30, 0.975), (0.35, 0.85), (0.40, 0.76),
+    (0.45, 0.68), (0.50, 0.62), (0.60, 0.54), (0.70, 0.48), (0.80, 0.42),
+)
+D_NEAR = 0.10  # m, start of the datasheet's range
+D_FAR = 0.80  # m, end of the datasheet's range
+D_PEAK = 0.08  # m, where the fold-back peaks
+V_PEAK = 2.60  # V
+V_FLOOR = 0.30  # V, reading with no object in range
+U_OFFSET = 0.04  # m, the k in u = 1/(d + k)
+MEASUREMENT_PERIOD = 0.0383  # s, datasheet typical
+IR_MV_MAX = 5000  # output clipped to the 5 V supply
+
+
+def _pchip_slopes(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Shape-preserving node slopes (Fritsch-Carlson, weighted harmonic mean)."""
+    h = np.diff(x)
+    delta = np.diff(y) / h
+    n = x.size
+    m = np.zeros(n)
+    for k in range(1, n - 1):
+        if delta[k - 1] * delta[k] > 0.0:
+            w1 = 2.0 * h[k] + h[k - 1]
+            w2 = h[k] + 2.0 * h[k - 1]
+            m[k] = (w1 + w2) / (w1 / delta[k - 1] + w2 / delta[k])
+
+    def end(h0: float, h1: float, d0: float, d1: float) -> float:
+        s = ((2.0 * h0 + h1) * d0 - h0 * d1) / (h0 + h1)
+        if s * d0 <= 0.0:
+            return 0.0
+        if d0 * d1 <= 0.0 and abs(s) > 3.0 * abs(d0):
+            return 3.0 * d0
+        return s
+
+    m[0] = end(h[0], h[1], delta[0], delta[1])
+    m[-1] = end(h[-1], h[-2], delta[-1], delta[-2])
+    return m
+
+
+# Knots in u, ascending (so from 80 cm down to 10 cm).
+_D = np.array([p[0] for p in DATASHEET_TABLE])[::-1].copy()
+_U = 1.0 / (_D + U_OFFSET)
+_V = np.array([p[1] for p in DATASHEET_TABLE])[::-1].copy()
+_M = _pchip_slopes(_U, _V)  # dV/du at each knot
+# dV/dd at the ends of the table (du/dd = -u^2).
+_SLOPE_NEAR = float(_M[-1] * -(_U[-1] ** 2))
+_SLOPE_FAR = float(_M[0] * -(_U[0] ** 2))
+_V_NEAR = float(_V[-1])
+_V_FAR = float(_V[0])
+TAIL_LENGTH = (_V_FAR - V_FLOOR) / -_SLOPE_FAR  # m
+
+
+@nb.njit(cache=True)
+def mv_of_distance(d: float) -> float:
+    """Scalar GP2D12 output in mV for a wall at distance d (m); see the module docstring."""
+    if d <= 0.0:
+        return 0.0
+    if d < D_PEAK:
+        q = d / D_PEAK
+        return 1000.0 * V_PEAK * q * (2.0 - q)
+    if d < D_NEAR:
+        h = D_NEAR - D_PEAK
+        s = (d - D_PEAK) / h
+        s2 = s * s
+        s3 = s2 * s
+        v = ((2.0 * s3 - 3.0 * s2 + 1.0) * V_PEAK + (-2.0 * s3 + 3.0 * s2) * _V_NEAR
+             + (s3 - s2) * h * _SLOPE_NEAR)
+        return 1000.0 * v
+    if d > D_FAR:
+        return 1000.0 * (V_FLOOR + (_V_FAR - V_FLOOR) * math.exp(-(d - D_FAR) / TAIL_LENGTH))
+    u = 1.0 / (d + U_OFFSET)
+    k = 0
+    n = _U.shape[0]
+    while k < n - 2 and u > _U[k + 1]:
+        k += 1
+    h = _U[k + 1] - _U[k]
+    s = (u - _U[k]) / h
+    s2 = s * s
+    s3 = s2 * s
+    v = ((2.0 * s3 - 3.0 * s2 + 1.0) * _V[k] + (s3 - 2.0 * s2 + s) * h * _M[k]
+         + (-2.0 * s3 + 3.0 * s2) * _V[k + 1] + (s3 - s2) * h * _M[k + 1])
+    return 1000.0 * v
+
+
+@nb.njit(cache=True)
+def _mv_array(d: np.ndarray) -> np.ndarray:
+    out = np.empty(d.shape[0])
+    for i in range(d.shape[0]):
+        out[i] = mv_of_distance(d[i])
+    return out
+
+
+def distance_to_mv(d_m: float | np.ndarray) -> float | np.ndarray:
+    """GP2D12 typical output (mV, float) for wall distance(s) in metres; any array shape."""
+    arr = np.asarray(d_m, dtype=np.float64)
+    out = _mv_array(np.ascontiguousarray(arr).ravel()).reshape(arr.shape)
+    return float(out) if arr.ndim == 0 else out
+
+
+@dataclass(frozen=True)
+class Gp2d12Model:
+    """Timing and range of the rangers.
+
+    ``period``: one measurement every ``period`` s, output held in between.
+    ``stagger``: the five rangers free-run unsynchronised, so ranger i's
+    measurement instants are t0 + i*period/5 + k*period (t0 = the first
+    ``sample`` call, when every ranger reports its power-up measurement);
+    with ``stagger=False`` all measure together at t0 + k*period.
+    ``max_range``: ray length; beyond the arena's diagonal means "no wall".
+    """
+
+    period: float = MEASUREMENT_PERIOD
+    stagger: bool = True
+    max_range: float = 4.0
+
+    def phases(self, n: int) -> list[float]:
+        return [i * self.period / n if self.stagger else 0.0 for i in range(n)]
+
+
+@nb.njit(cache=True)
+def ir_ray_distance(px: float, py: float, dx: float, dy: float, edges: np.ndarray,
+                    wall_polys: np.ndarray, max_range: float) -> float:
+    """Distance from a ranger at (px, py) looking along unit (dx, dy) to the nearest wall.
+
+    A ranger pushed into a wall (a collision) sees the wall at 0 m.
+    """
+    for w in range(wall_polys.shape[0]):
+        if point_in_convex(px, py, wall_polys[w]):
+            return 0.0
+    return ray_cast(px, py, dx, dy, edges, max_range)

@@ -1,0 +1,255 @@
+"""All of the robot's sensors, sampled together once per firmware tick.
+
+``SensorSuite.sample`` is on the hot path (every 10 ms tick of every
+mission), so it is one compiled kernel call: the Python side only passes the
+pose and pre-packed arrays; configuration is packed once at construction.
+Rangers ray-cast only when their measurement is due (every 38.3 ms); the
+flame line-of-sight test runs only when the flame is lit and within a
+sensor's field of view.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba as nb
+import numpy as np
+
+from sim_plant.arena import Arena
+from sim_plant.candle import Candle
+from sim_plant.robot import IR_NAMES, RobotParams
+from sim_plant.sensors.channels import (
+    CH_ENC_L,
+    CH_ENC_R,
+    CH_FLAME_L,
+    CH_FLAME_R,
+    CH_IR,
+    CH_LINE,
+    N_CHANNELS,
+)
+from sim_plant.sensors.encoders import encoder_counts
+from sim_plant.sensors.flame_sensor import FlameModel, flame_sensor_fc
+from sim_plant.sensors.gp2d12 import IR_MV_MAX, Gp2d12Model, ir_ray_distance, mv_of_distance
+from sim_plant.sensors.line_sensor import door_segments, white_fraction
+from sim_plant.sensors.noise import (
+    ENABLED,
+    FLAME_BASE,
+    IR_BASE,
+    NoiseProfile,
+    NoiseStream,
+    apply_analog,
+    flip_bit,
+    needs_refill,
+    slip,
+)
+
+_T_EPS = 1e-9  # s, a measurement due "at" a tick time is taken at that tick
+
+# ir_cfg columns
+_BX, _BY, _CA, _SA, _PHASE = range(5)
+# ir_state columns
+_K, _HELD, _DIST, _CLEAN = range(4)
+# cfg entries
+(C_PERIOD, C_MAX_RANGE, C_FX, C_FY, C_FZ, C_AIM, C_HALF, C_RMIN, C_GAIN, C_DARK, C_FULL,
+ C_CX, C_CY, C_CZ, C_LX, C_LY, C_HALFW, C_RHO, C_THRESH, C_HX, C_HY, C_HR, C_CR,
+ C_TPR) = range(24)
+N_CFG = 24
+# st entries: state and diagnostics
+(S_INIT, S_T0, S_PHI_L, S_PHI_R, S_SLIP_L, S_SLIP_R, S_FLAME_PREV_L, S_FLAME_PREV_R,
+ S_FC_L, S_FC_R, S_LINE_FRAC) = range(11)
+N_ST = 11
+
+
+@nb.njit(cache=True)
+def _round(v: float) -> float:
+    return math.floor(v + 0.5)
+
+
+# Explicit signature: compiled once (and cached), ints passed for t or the pose are
+# converted instead of triggering a second compilation, and a wrong ``out``
+# dtype is refused.
+_KERNEL_SIG = ("boolean(float64, float64, float64, float64, float64, float64, boolean, int32[::1],"
+               " float64[:, ::1], float64[:, ::1], float64[::1], float64[::1], float64[:, ::1],"
+               " float64[:, :, ::1], float64[:, ::1], float64[::1], float64[::1], float64[::1],"
+               " int64[::1])")
+
+
+@nb.njit(_KERNEL_SIG, cache=True)
+def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi_r: float,
+                   lit: bool, out: np.ndarray, ir_cfg: np.ndarray, ir_state: np.ndarray,
+                   cfg: np.ndarray, st: np.ndarray, edges: np.ndarray, wall_polys: np.ndarray,
+                   doors: np.ndarray, npar: np.ndarray, normals: np.ndarray,
+                   uniforms: np.ndarray, npos: np.ndarray) -> bool:
+    c = math.cos(theta)
+    s = math.sin(theta)
+    first = st[S_INIT] == 0.0
+    if first:
+        st[S_INIT] = 1.0
+        st[S_T0] = t
+        st[S_PHI_L] = phi_l
+        st[S_PHI_R] = phi_r
+    noisy = npar[ENABLED] != 0.0
+    t0 = st[S_T0]
+
+    # GP2D12 rangers: measure when due, hold in between.
+    period = cfg[C_PERIOD]
+    for i in range(ir_cfg.shape[0]):
+        k = ir_state[i, _K]
+        phase = ir_cfg[i, _PHASE]
+        if first or t + _T_EPS >= t0 + phase + k * period:
+            bx = ir_cfg[i, _BX]
+            by = ir_cfg[i, _BY]
+            ca = ir_cfg[i, _CA]
+            sa = ir_cfg[i, _SA]
+            px = x + c * bx - s * by
+            py = y + s * bx + c * by
+            d = ir_ray_distance(px, py, c * ca - s * sa, s * ca + c * sa, edges, wall_polys,
+                                cfg[C_MAX_RANGE])
+            mv = mv_of_distance(d)
+            ir_state[i, _DIST] = d
+            ir_state[i, _CLEAN] = mv
+            if noisy:
+                mv = apply_analog(mv, npar, IR_BASE, normals, uniforms, npos, ir_state[i, _HELD])
+            ir_state[i, _HELD] = min(max(_round(mv), 0.0), IR_MV_MAX)
+            while t + _T_EPS >= t0 + phase + k * period:
+                k += 1.0
+            ir_state[i, _K] = k
+        out[i] = np.int32(ir_state[i, _HELD])
+
+    # Flame sensors, left (+y, +aim) then right.
+    for j in range(2):
+        side = 1.0 if j == 0 else -1.0
+        fc = 0.0
+        if lit:
+            fc = flame_sensor_fc(x, y, c, s, cfg[C_FX], side * cfg[C_FY], cfg[C_FZ],
+                                 side * cfg[C_AIM], theta, cfg[C_CX], cfg[C_CY], cfg[C_CZ],
+                                 edges, cfg[C_HALF], cfg[C_RMIN])
+        st[S_FC_L + j] = fc
+        v = cfg[C_GAIN] * fc + cfg[C_DARK]
+        if noisy:
+            v = apply_analog(v, npar, FLAME_BASE, normals, uniforms, npos, st[S_FLAME_PREV_L + j])
+        v = min(max(_round(v), 0.0), cfg[C_FULL])
+        st[S_FLAME_PREV_L + j] = v
+        out[5 + j] = np.int32(v)
+
+    # Line sensor.
+    lx = x + c * cfg[C_LX] - s * cfg[C_LY]
+    ly = y + s * cfg[C_LX] + c * cfg[C_LY]
+    frac = white_fraction(lx, ly, doors, cfg[C_HALFW], cfg[C_RHO], cfg[C_HX], cfg[C_HY],
+                          cfg[C_HR], cfg[C_CX], cfg[C_CY], cfg[C_CR])
+    st[S_LINE_FRAC] = frac
+    bit = 1 if frac >= cfg[C_THRESH] - 1e-12 else 0
+    if noisy:
+        bit = flip_bit(bit, npar, uniforms, npos)
+    out[7] = bit
+
+    # Encoders; a slip loses part of this tick's rotation for good.
+    if noisy:
+        st[S_SLIP_L] += slip(phi_l - st[S_PHI_L], npar, uniforms, npos)
+        st[S_SLIP_R] += slip(phi_r - st[S_PHI_R], npar, uniforms, npos)
+    st[S_PHI_L] = phi_l
+    st[S_PHI_R] = phi_r
+    out[8] = np.int32(encoder_counts(phi_l - st[S_SLIP_L], cfg[C_TPR]))
+    out[9] = np.int32(encoder_counts(phi_r - st[S_SLIP_R], cfg[C_TPR]))
+    return noisy and needs_refill(npos, normals.shape[0])
+
+
+assert CH_IR == (0, 1, 2, 3, 4) and (CH_FLAME_L, CH_FLAME_R, CH_LINE, CH_ENC_L, CH_ENC_R) == (
+    5, 6, 7, 8, 9), "the kernel writes these channel indices literally"
+
+
+class SensorSuite:
+    """The robot's sensors in one arena with one candle: ``sample`` once per tick.
+
+    ``noise`` defaults to the ``none`` profile; ``rng`` is needed only when the
+    profile turns something on, and is the only source of randomness. The
+    candle's position is read once here; whether it is lit, at every sample.
+    ``ir_model`` / ``flame_model`` override the GP2D12 timing and the flame
+    sensor's gain, dark level and field of view.
+    """
+
+    def __init__(self, arena: Arena, robot: RobotParams, candle: Candle,
+                 noise: NoiseProfile | None = None, rng: np.random.Generator | None = None,
+                 *, ir_model: Gp2d12Model | None = None,
+                 flame_model: FlameModel | None = None) -> None:
+        self.arena = arena
+        self.robot = robot
+        self.candle = candle
+        self.noise = noise if noise is not None else NoiseProfile()
+        self.ir_model = ir_model if ir_model is not None else Gp2d12Model()
+        self.flame_model = flame_model if flame_model is not None else FlameModel()
+        if self.ir_model.period <= 0.0:
+            raise ValueError(f"GP2D12 period must be > 0, got {self.ir_model.period}")
+
+        phases = self.ir_model.phases(len(IR_NAMES))
+        self._ir_cfg = np.array(
+            [[robot.ir[n].x, robot.ir[n].y, math.cos(math.radians(robot.ir[n].angle_deg)),
+              math.sin(math.radians(robot.ir[n].angle_deg)), phases[i]]
+             for i, n in enumerate(IR_NAMES)], dtype=np.float64)
+        self._ir_state = np.zeros((len(IR_NAMES), 4))
+        fm = self.flame_model
+        fl = robot.flame
+        ls = robot.line_sensor
+        cfg = np.zeros(N_CFG)
+        cfg[C_PERIOD] = self.ir_model.period
+        cfg[C_MAX_RANGE] = self.ir_model.max_range
+        cfg[C_FX], cfg[C_FY], cfg[C_FZ] = fl.x, fl.y_offset, fl.height
+        cfg[C_AIM] = math.radians(fl.aim_deg)
+        cfg[C_HALF] = math.radians(fm.k_half_width_deg)
+        cfg[C_RMIN] = fm.r_min
+        cfg[C_GAIN] = fm.gain
+        cfg[C_DARK] = fm.dark
+        cfg[C_FULL] = (1 << fl.adc_bits) - 1
+        cfg[C_CX], cfg[C_CY], cfg[C_CZ] = candle.x, candle.y, candle.height
+        cfg[C_LX], cfg[C_LY] = ls.x, ls.y
+        cfg[C_HALFW] = arena.line_width / 2.0
+        cfg[C_RHO] = ls.spot_radius
+        cfg[C_THRESH] = ls.white_fraction
+        cfg[C_HX], cfg[C_HY] = arena.home_center
+        cfg[C_HR] = arena.home_radius
+        cfg[C_CR] = arena.candle_circle_radius
+        cfg[C_TPR] = robot.encoder.ticks_per_rev
+        self._cfg = cfg
+        self._st = np.zeros(N_ST)
+        self._stream = NoiseStream(rng, self.noise.enabled)
+        self._args = (self._ir_cfg, self._ir_state, cfg, self._st, arena.wall_edges,
+                      arena.wall_polys, door_segments(arena), self.noise.packed(),
+                      self._stream.normals, self._stream.uniforms, self._stream.pos)
+        self._checked_out: np.ndarray | None = None
+
+    def sample(self, t: float, x: float, y: float, theta: float, phi_l: float, phi_r: float,
+               out: np.ndarray) -> None:
+        """Write the sensors' hardware-unit readings at time t (s) and pose into ``out``."""
+        if out is not self._checked_out:
+            if out.dtype != np.int32 or out.shape != (N_CHANNELS,):
+                raise TypeError(f"out must be int32 of shape ({N_CHANNELS},), "
+                                f"got {out.dtype} {out.shape}")
+            self._checked_out = out
+        if _sample_kernel(t, x, y, theta, phi_l, phi_r, self.candle.lit, out, *self._args):
+            self._stream.refill()
+
+    def reset(self) -> None:
+        """Forget all sensor state (held ranger readings, slip, start time); noise stream kept."""
+        self._ir_state[:] = 0.0
+        self._st[:] = 0.0
+
+    # -- ground truth, for tests and plots ---------------------------------
+    @property
+    def ir_distance(self) -> np.ndarray:
+        """True ray distance (m) at each ranger's last measurement, IR_NAMES order."""
+        return self._ir_state[:, _DIST].copy()
+
+    @property
+    def ir_mv_clean(self) -> np.ndarray:
+        """Noise-free output (mV, float) of each ranger's last measurement."""
+        return self._ir_state[:, _CLEAN].copy()
+
+    @property
+    def flame_fc(self) -> tuple[float, float]:
+        """Light on the left and right flame sensors at the last sample (foot-candles)."""
+        return float(self._st[S_FC_L]), float(self._st[S_FC_R])
+
+    @property
+    def line_fraction(self) -> float:
+        """White fraction of the line sensor's spot at the last sample."""
+        return float(self._st[S_LINE_FRAC])

@@ -1,0 +1,146 @@
+"""GP2D12 ranger: datasheet curve, fold-back, far tail, hold timing and ray geometry."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from sim_plant.arena import load_arena
+from sim_plant.candle import Candle
+from sim_plant.robot import load_robot
+from sim_plant.sensors import CH_IR, Gp2d12Model, SensorSuite, distance_to_mv, new_output
+
+# DESIGN.md, datasheet typical curve: cm -> V.
+DATASHEET = [(10, 2.45), (12, 2.125), (14, 1.86), (16, 1.66), (18, 1.52), (20, 1.38),
+             (25, 1.14), (30, 0.975), (35, 0.85), (40, 0.76), (45, 0.68), (50, 0.62),
+             (60, 0.54), (70, 0.48), (80, 0.42)]
+
+
+@pytest.fixture(scope="module")
+def arena():
+    return load_arena()
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return load_robot()
+
+
+def make_suite(arena, robot, **kw):
+    candle = Candle(*arena.room(1).default_candle, robot, arena)
+    return SensorSuite(arena, robot, candle, **kw)
+
+
+@pytest.mark.parametrize(("d_cm", "volts"), DATASHEET)
+def test_datasheet_points_within_3_percent(d_cm, volts):
+    mv = distance_to_mv(d_cm / 100.0)
+    assert abs(mv - 1000.0 * volts) <= 0.03 * 1000.0 * volts
+
+
+def test_curve_monotone_falling_from_peak_to_far():
+    d = np.linspace(0.081, 3.5, 5000)
+    mv = distance_to_mv(d)
+    assert np.all(np.diff(mv) < 0.0)
+
+
+def test_fold_back_below_10cm():
+    assert distance_to_mv(0.05) < distance_to_mv(0.10)
+    assert distance_to_mv(0.0) < 100.0
+    assert distance_to_mv(0.02) < distance_to_mv(0.05) < distance_to_mv(0.08)
+    # Ambiguous: 5 cm reads like some distance between 10 and 20 cm.
+    assert distance_to_mv(0.20) < distance_to_mv(0.05) < distance_to_mv(0.10)
+
+
+def test_far_tail_falls_to_floor():
+    assert distance_to_mv(1.0) < distance_to_mv(0.8)
+    assert 250.0 <= distance_to_mv(4.0) <= 400.0
+    assert distance_to_mv(4.0) < distance_to_mv(1.5) < distance_to_mv(1.0)
+    # Smooth at 80 cm: no jump across the table's end.
+    assert abs(distance_to_mv(0.8 + 1e-6) - distance_to_mv(0.8 - 1e-6)) < 0.01
+
+
+def test_vectorised_keeps_shape_and_scalar_gives_float():
+    d = np.array([[0.1, 0.2], [0.3, 0.8]])
+    mv = distance_to_mv(d)
+    assert mv.shape == (2, 2)
+    assert mv[0, 1] == pytest.approx(1380.0)
+    assert isinstance(distance_to_mv(0.2), float)
+
+
+@pytest.mark.parametrize(
+    ("x", "y", "theta", "name", "expected"),
+    [
+        # Room BR (inside x 1.22-2.42, y 0.02-0.92); CF sits 0.10 m ahead of the origin.
+        (2.0, 0.5, 0.0, "CF", 2.42 - 2.10),
+        (1.8, 0.5, math.pi / 2, "CF", 0.92 - 0.60),
+        (1.8, 0.3, math.pi, "CF", 1.70 - 1.22),  # below the doorway (y 0.46-0.92)
+        # LF at body (0.08, 0.07) looking 45° left: hits the right wall x = 2.42 first.
+        (2.0, 0.5, 0.0, "LF", (2.42 - 2.08) * math.sqrt(2.0)),
+    ],
+)
+def test_ray_geometry_known_pose(arena, robot, x, y, theta, name, expected):
+    suite = make_suite(arena, robot)
+    out = new_output()
+    suite.sample(0.0, x, y, theta, 0.0, 0.0, out)
+    i = ("CF", "LF", "RF", "LR", "RR").index(name)
+    assert suite.ir_distance[i] == pytest.approx(expected, abs=1e-9)
+    assert out[CH_IR[i]] == math.floor(distance_to_mv(expected) + 0.5)
+
+
+def test_ranger_inside_wall_reads_contact(arena, robot):
+    suite = make_suite(arena, robot)
+    out = new_output()
+    # CF at x = 2.43, inside the right outer wall.
+    suite.sample(0.0, 2.33, 0.5, 0.0, 0.0, 0.0, out)
+    assert suite.ir_distance[0] == 0.0
+    assert out[CH_IR[0]] == 0
+
+
+def test_output_held_between_measurements(arena, robot):
+    period = Gp2d12Model().period
+    suite = make_suite(arena, robot)
+    out = new_output()
+    dt = 0.01
+    prev = None
+    changes = []
+    for n in range(40):
+        t = n * dt
+        # Drive toward the right wall of room BR: every new measurement sees a new distance.
+        suite.sample(t, 1.6 + 0.003 * n, 0.5, 0.0, 0.0, 0.0, out)
+        cf = int(out[CH_IR[0]])
+        if prev is not None:
+            changes.append(cf != prev)
+        prev = cf
+    # CF (phase 0) measures at the first tick at or after each k * period.
+    due = [any((n - 1) * dt < k * period <= n * dt + 1e-9 for k in range(1, 20))
+           for n in range(1, 40)]
+    assert changes == due
+    assert any(due) and not all(due)
+
+
+def test_stagger_offsets_rangers(arena, robot):
+    period = 0.0383
+    phases = Gp2d12Model(period=period).phases(5)
+    assert phases == pytest.approx([i * period / 5 for i in range(5)])
+    assert Gp2d12Model(stagger=False).phases(5) == [0.0] * 5
+    suite = make_suite(arena, robot)
+    out = new_output()
+    suite.sample(0.0, 1.6, 0.5, 0.0, 0.0, 0.0, out)
+    d0 = suite.ir_distance
+    suite.sample(0.01, 1.6, 0.55, 0.0, 0.0, 0.0, out)
+    d1 = suite.ir_distance
+    # The move changes every ranger's distance but CF's; at 10 ms only LF
+    # (phase 7.66 ms) has measured again.
+    assert [bool(a != b) for a, b in zip(d0, d1, strict=True)] == [False, True, False, False, False]
+
+
+def test_configurable_period(arena, robot):
+    suite = make_suite(arena, robot, ir_model=Gp2d12Model(period=0.01, stagger=False))
+    out = new_output()
+    seen = set()
+    for n in range(5):
+        suite.sample(n * 0.01, 1.6 + 0.01 * n, 0.5, 0.0, 0.0, 0.0, out)
+        seen.add(int(out[CH_IR[0]]))
+    assert len(seen) == 5
