@@ -311,7 +311,6 @@ def rk4_reference(z, E, T, h, c):
             else:
                 hi = mid
         z = _rk4(z, hi * dt, E, m, c)
-        e = _event(z, z, m, c)
         for s in range(2):
             if m[s] != 0.0 and m[s] * z[4 + 3 * s] <= 0.0:
                 z[4 + 3 * s] = 0.0
