@@ -223,9 +223,11 @@ typedef struct {
 
 typedef struct {
     uint8_t seen[2];               /* side wall seen long enough (L, R)       */
+    uint8_t opened[2];             /* then it ended: latched for the step     */
     float seen_mm[2];              /* travel with the wall seen               */
     float open_mm[2];              /* travel with the side open               */
     float open_at_mm[2];           /* odometry distance where it opened       */
+    float since_open_mm[2];        /* travel since the side last read open    */
 } ffr_openings_t;
 
 typedef struct {
@@ -233,6 +235,7 @@ typedef struct {
     float target_rad;              /* turn target                             */
     float start_mm;                /* odometry distance at step start         */
     float goal_mm;                 /* distance goal (FORWARD, wrap-around)    */
+    int16_t case_turn_deg;         /* turn chosen by the wall case            */
     uint8_t phase;
     uint8_t pc;                    /* route program counter                   */
 } ffr_route_state_t;

@@ -155,8 +155,8 @@ void ffr_config_default(ffr_config_t *c)
     c->room_exit_mm = 340.0f;
     c->home_advance_mm = 240.0f;
 
-    c->flame_detect = 150.0f;
-    c->flame_out = 100.0f;
+    c->flame_detect = 170.0f; /* counts, both sensors: dark is ~2 x 40 */
+    c->flame_out = 125.0f;
     c->flame_steer_deg = 30.0f;
     c->approach_stop_mm = 200.0f;
     c->fan_timeout_ms = 8000u;

@@ -40,7 +40,7 @@ void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
         if (w.angle_valid) {
             float wall_dir = st->odo.heading_rad + w.angle_rad;
             float diff = ffr_wrap_pi(wall_dir - st->route.heading_ref_rad);
-            if (ffr_absf(diff) < 10.0f * FFR_DEG) {
+            if (ffr_absf(diff) < 5.0f * FFR_DEG) {
                 st->route.heading_ref_rad += cfg->wall_align_gain * diff;
             }
         }

@@ -58,7 +58,11 @@ typedef enum {
     FFR_CASE_BRANCH_RIGHT = 6, /* open ahead and right: preference or on   */
     FFR_CASE_OPEN = 7          /* nothing seen anywhere                    */
 } ffr_wall_case_t;
-ffr_wall_case_t ffr_wall_case(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT]);
+ffr_wall_case_t ffr_wall_case(int front_wall, int left_open, int right_open);
+/* The case where the robot stands: front from the front ranger, sides from
+ * the openings seen on the way in (or a side ranger seeing nothing now). */
+ffr_wall_case_t ffr_wall_case_sensed(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT],
+                                     const ffr_openings_t *op);
 /* Degrees to turn (+ left) for a case; prefer = FFR_SIDE_LEFT/RIGHT/NONE. */
 int16_t ffr_wall_case_turn(ffr_wall_case_t c, uint8_t prefer);
 
@@ -74,7 +78,7 @@ void ffr_lines_update(ffr_line_counter_t *l, const ffr_config_t *cfg, uint8_t li
 void ffr_openings_reset(ffr_openings_t *op);
 void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT],
                          float dist_mm, float step_mm);
-int ffr_opening(const ffr_openings_t *op, const ffr_config_t *cfg, int side);
+int ffr_opening(const ffr_openings_t *op, int side);
 
 /* room.c: the room task (Fig. 11) and the flame task (Fig. 12). */
 void ffr_room_begin(ffr_state_t *st, uint8_t room);

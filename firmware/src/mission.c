@@ -27,6 +27,7 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->route.target_rad = 0.0f;
     st->route.start_mm = 0.0f;
     st->route.goal_mm = 0.0f;
+    st->route.case_turn_deg = 0;
     st->route.phase = 0;
     st->route.pc = 0;
     st->room.phase = 0;

@@ -22,16 +22,17 @@ static void begin_current(ffr_state_t *st)
     s = cur(st);
     st->route.phase = PH_DRIVE;
     st->route.start_mm = st->odo.dist_mm;
+    if (s->op == FFR_OP_TURN && s->param == 0) {
+        /* decided by the wall case, from what the last leg saw: before the reset */
+        st->route.case_turn_deg = ffr_wall_case_turn(ffr_wall_case_sensed(cfg, st->ir_mm, &st->open), s->side);
+    }
     ffr_openings_reset(&st->open);
     switch (s->op) {
     case FFR_OP_FOLLOW:
         st->state = FFR_ST_FOLLOW;
         break;
     case FFR_OP_TURN: {
-        int16_t deg = s->param;
-        if (deg == 0) {
-            deg = ffr_wall_case_turn(ffr_wall_case(cfg, st->ir_mm), s->side);
-        }
+        int16_t deg = s->param != 0 ? s->param : st->route.case_turn_deg;
         st->route.target_rad = st->route.heading_ref_rad + (float)deg * FFR_DEG;
         st->state = FFR_ST_TURN;
         break;
@@ -76,9 +77,9 @@ static int event_fired(ffr_state_t *st, const ffr_step_t *s)
     case FFR_EV_FRONT:
         return ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm;
     case FFR_EV_OPEN_L:
-        return ffr_opening(&st->open, cfg, FFR_SIDE_LEFT);
+        return ffr_opening(&st->open, FFR_SIDE_LEFT);
     case FFR_EV_OPEN_R:
-        return ffr_opening(&st->open, cfg, FFR_SIDE_RIGHT);
+        return ffr_opening(&st->open, FFR_SIDE_RIGHT);
     case FFR_EV_LINE:
         return st->lines.edge;
     default:

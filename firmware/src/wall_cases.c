@@ -6,16 +6,8 @@
  */
 #include "ffr_internal.h"
 
-static int side_open(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], int front_ranger)
+ffr_wall_case_t ffr_wall_case(int front, int lo, int ro)
 {
-    return !(ir_mm[front_ranger] < cfg->open_mm);
-}
-
-ffr_wall_case_t ffr_wall_case(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT])
-{
-    int front = ffr_front_distance(cfg, ir_mm) < cfg->front_slow_mm;
-    int lo = side_open(cfg, ir_mm, FFR_IR_LF);
-    int ro = side_open(cfg, ir_mm, FFR_IR_RF);
     if (front) {
         if (lo && ro) {
             return FFR_CASE_T;
@@ -38,6 +30,18 @@ ffr_wall_case_t ffr_wall_case(const ffr_config_t *cfg, const float ir_mm[FFR_IR_
         return FFR_CASE_BRANCH_RIGHT;
     }
     return FFR_CASE_CORRIDOR;
+}
+
+ffr_wall_case_t ffr_wall_case_sensed(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT],
+                                     const ffr_openings_t *op)
+{
+    int front = ffr_front_distance(cfg, ir_mm) < cfg->front_slow_mm;
+    /* open if it read open within a hallway's width of travel: nearing a
+     * junction the corner ranger sees the side open before the wall ahead */
+    const float recent = 2.0f * cfg->hallway_half_mm;
+    int lo = op->since_open_mm[FFR_SIDE_LEFT] < recent || !(ir_mm[FFR_IR_LF] < cfg->open_mm);
+    int ro = op->since_open_mm[FFR_SIDE_RIGHT] < recent || !(ir_mm[FFR_IR_RF] < cfg->open_mm);
+    return ffr_wall_case(front, lo, ro);
 }
 
 int16_t ffr_wall_case_turn(ffr_wall_case_t c, uint8_t prefer)

@@ -37,7 +37,9 @@ ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_C
         float wy = fy - ry;
         float len = ffr_sqrtf(wx * wx + wy * wy);
         float ang;
-        if (len > 50.0f && wx > 0.0f) {
+        /* both hits on one straight wall: beside the robot at similar offsets
+         * (a rear ranger looking into a side hallway hits another wall) */
+        if (len > 50.0f && wx > 0.0f && ffr_absf(ffr_absf(fy) - ffr_absf(ry)) < 100.0f) {
             ang = ffr_atan2f(wy, wx);
             /* a steep line is a corner or two different walls, not one wall */
             if (ffr_absf(ang) < 35.0f * FFR_DEG) {

@@ -18,7 +18,7 @@ void suite_openings(void)
     for (i = 0; i < 50; ++i, d += 3.0f) {
         ffr_openings_update(&op, &cfg, ir, d, 3.0f);
     }
-    CHECK(!ffr_opening(&op, &cfg, FFR_SIDE_LEFT));
+    CHECK(!ffr_opening(&op, FFR_SIDE_LEFT));
     /* a wall for 150 mm, then open */
     ffr_openings_reset(&op);
     d = 0.0f;
@@ -26,7 +26,7 @@ void suite_openings(void)
     for (i = 0; i < 50; ++i, d += 3.0f) {
         ffr_openings_update(&op, &cfg, ir, d, 3.0f);
     }
-    CHECK(!ffr_opening(&op, &cfg, FFR_SIDE_LEFT));
+    CHECK(!ffr_opening(&op, FFR_SIDE_LEFT));
     {
         float wall_end = op.open_at_mm[FFR_SIDE_LEFT];
         /* the hit point is ahead of the origin by x + d cos(45) */
@@ -36,10 +36,18 @@ void suite_openings(void)
     for (i = 0; i < 5; ++i, d += 3.0f) {
         ffr_openings_update(&op, &cfg, ir, d, 3.0f);
     }
-    CHECK(!ffr_opening(&op, &cfg, FFR_SIDE_LEFT)); /* 15 mm < confirm */
+    CHECK(!ffr_opening(&op, FFR_SIDE_LEFT)); /* 15 mm < confirm */
     for (i = 0; i < 5; ++i, d += 3.0f) {
         ffr_openings_update(&op, &cfg, ir, d, 3.0f);
     }
-    CHECK(ffr_opening(&op, &cfg, FFR_SIDE_LEFT));
-    CHECK(!ffr_opening(&op, &cfg, FFR_SIDE_RIGHT));
+    CHECK(ffr_opening(&op, FFR_SIDE_LEFT));
+    CHECK(!ffr_opening(&op, FFR_SIDE_RIGHT));
+    CHECK_NEAR(op.since_open_mm[FFR_SIDE_LEFT], 0.0, 1e-6);
+    CHECK_NEAR(op.since_open_mm[FFR_SIDE_RIGHT], 0.0, 1e-6); /* nothing there reads open */
+    /* latched: a wall seen again (the far side of a junction) does not undo it */
+    ir[FFR_IR_LF] = 200.0f;
+    for (i = 0; i < 40; ++i, d += 3.0f) {
+        ffr_openings_update(&op, &cfg, ir, d, 3.0f);
+    }
+    CHECK(ffr_opening(&op, FFR_SIDE_LEFT));
 }

@@ -1,0 +1,103 @@
+"""In-process link: the host build of the firmware (libffr.so) through ctypes."""
+
+from __future__ import annotations
+
+import ctypes
+import os
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from harness.firmware_abi import (
+    CONFIG_DTYPE,
+    FirmwareLayoutError,
+    LibraryLayout,
+    check_layout,
+    read_layout,
+)
+from harness.links.base import FirmwareLink, LinkError, register_link
+
+REPO = Path(__file__).resolve().parents[2]
+DEFAULT_LIB = REPO / "build" / "host" / "libffr.so"
+
+
+def library_path(explicit: str | None = None) -> Path:
+    if explicit:
+        return Path(explicit)
+    env = os.environ.get("FFR_FIRMWARE_LIB")
+    return Path(env) if env else DEFAULT_LIB
+
+
+@lru_cache(maxsize=8)
+def load_library(path: str) -> tuple[ctypes.CDLL, LibraryLayout]:
+    """Load and check a firmware library once per path."""
+    p = Path(path)
+    if not p.exists():
+        raise LinkError(f"firmware library {p} not found: build it with `make firmware-host`")
+    try:
+        lib = ctypes.CDLL(str(p))
+    except OSError as exc:
+        raise LinkError(f"firmware library {p}: cannot be loaded: {exc}") from None
+    try:
+        layout = read_layout(lib)
+    except AttributeError as exc:
+        raise FirmwareLayoutError(f"{p}: not an ffr firmware library ({exc})") from None
+    check_layout(layout, str(p))
+    vp = ctypes.c_void_p
+    lib.ffr_init.argtypes = [vp, vp]
+    lib.ffr_init.restype = None
+    lib.ffr_step.argtypes = [vp, vp, vp]
+    lib.ffr_step.restype = None
+    lib.ffr_step_many.argtypes = [vp, vp, vp, ctypes.c_uint32]
+    lib.ffr_step_many.restype = None
+    lib.ffr_config_default.argtypes = [vp]
+    lib.ffr_config_default.restype = None
+    return lib, layout
+
+
+def default_config(path: str | None = None) -> np.ndarray:
+    """The firmware's own defaults (ffr_config_default) as a CONFIG_DTYPE record."""
+    lib, _ = load_library(str(library_path(path)))
+    cfg = np.zeros((), dtype=CONFIG_DTYPE)
+    lib.ffr_config_default(cfg.ctypes.data)
+    return cfg
+
+
+class CtypesLink(FirmwareLink):
+    """The firmware as a host shared library; its state in a numpy buffer we own."""
+
+    def __init__(self, path: str | None = None) -> None:
+        super().__init__()
+        self.path = str(library_path(path))
+        self.lib, self.layout = load_library(self.path)
+        size = self.layout.sizes[99]
+        # 8-byte aligned storage for ffr_state_t
+        self._state = np.zeros((size + 7) // 8, dtype=np.uint64)
+        self._state_ptr = self._state.ctypes.data
+        self._step_fn = self.lib.ffr_step
+        self._bound: tuple[int, int, int, int] | None = None
+
+    def _reset_impl(self, config: np.ndarray) -> None:
+        self.lib.ffr_init(self._state_ptr, config.ctypes.data)
+
+    def _step_impl(self, inputs: np.ndarray, outputs: np.ndarray) -> None:
+        self._step_fn(self._state_ptr, inputs.ctypes.data, outputs.ctypes.data)
+
+    def bind(self, inputs: np.ndarray, outputs: np.ndarray) -> None:
+        """Fix the I/O buffers for ``step_bound`` (the loop's fast path)."""
+        self._bound = (id(inputs), id(outputs), inputs.ctypes.data, outputs.ctypes.data)
+
+    def step_bound(self) -> None:
+        """``step`` on the bound buffers without re-deriving pointers (hot loop)."""
+        assert self._bound is not None
+        self._step_fn(self._state_ptr, self._bound[2], self._bound[3])
+        self.steps += 1
+
+
+def _factory(url: str) -> FirmwareLink:
+    rest = url.partition(":")[2]
+    return CtypesLink(rest or None)
+
+
+register_link("ctypes", _factory)

@@ -1,0 +1,169 @@
+"""Mission scenarios: which arena, robot, candle, start, seed, noise and tuning.
+
+A scenario is a TOML file (see ``docs/scenarios.md``) or built from CLI
+options; both go through ``load_scenario`` / ``make_scenario`` and are
+validated with one-line errors naming the file, field and value.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from sim_plant.arena import Arena, _Reader, load_arena, read_toml
+from sim_plant.errors import FfrInputError
+from sim_plant.robot import RobotParams, load_robot, override
+from sim_plant.sensors import NoiseProfile, load_noise_profile
+
+_TOP_KEYS = {"name", "seed", "noise", "arena", "robot", "candle", "start", "timing", "firmware",
+             "robot_overrides", "events", "stop_on_contact"}
+
+
+@dataclass
+class Timing:
+    firmware_period_ms: int = 10
+    plant_dt_ms: float = 1.0
+    find_limit_s: float = 300.0     # the contest's 5 min to find the candle
+    return_limit_s: float = 120.0   # and 2 min to return
+    start_delay_ms: int = 0
+
+
+@dataclass
+class Scenario:
+    name: str
+    source: str
+    arena: Arena
+    robot: RobotParams
+    candle: tuple[float, float]
+    room: int
+    start: tuple[float, float, float]  # x, y (m), heading (rad)
+    seed: int = 0
+    noise: NoiseProfile = field(default_factory=lambda: load_noise_profile("none"))
+    firmware: dict[str, Any] = field(default_factory=dict)
+    robot_overrides: dict[str, Any] = field(default_factory=dict)
+    timing: Timing = field(default_factory=Timing)
+    stop_on_contact: bool = False
+    events: list[dict[str, Any]] = field(default_factory=list)
+
+
+def default_start(arena: Arena) -> tuple[float, float, float]:
+    """Centre of the home circle, facing +y (up the east hallway of the 2004 arena)."""
+    return arena.home_center[0], arena.home_center[1], math.pi / 2
+
+
+def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = None,
+                  room: int | None = None, candle: tuple[float, float] | None = None,
+                  seed: int = 0, noise: str | NoiseProfile = "none",
+                  firmware: dict[str, Any] | None = None, robot_overrides: dict[str, Any] | None = None,
+                  start: tuple[float, float, float] | None = None, timing: Timing | None = None,
+                  name: str | None = None, source: str = "command line",
+                  stop_on_contact: bool = False) -> Scenario:
+    arena = arena or load_arena()
+    robot = robot or load_robot()
+    for key, value in (robot_overrides or {}).items():
+        robot = override(robot, key, value, source)
+    if candle is not None:
+        rm = arena.check_candle(candle[0], candle[1], source=source)
+        room_id = rm.id
+    else:
+        room_id = 1 if room is None else room
+        rm = arena.room(room_id)
+        candle = rm.default_candle
+    prof = noise if isinstance(noise, NoiseProfile) else load_noise_profile(noise)
+    return Scenario(
+        name=name or (f"room{room_id}" if room is not None or candle is None else "candle"),
+        source=source, arena=arena, robot=robot, candle=(float(candle[0]), float(candle[1])),
+        room=room_id, start=start or default_start(arena), seed=seed, noise=prof,
+        firmware=dict(firmware or {}), robot_overrides=dict(robot_overrides or {}),
+        timing=timing or Timing(), stop_on_contact=stop_on_contact,
+    )
+
+
+def _timing(r: _Reader) -> Timing:
+    t = Timing()
+    period = r.get("firmware_period_ms", t.firmware_period_ms)
+    if isinstance(period, bool) or not isinstance(period, int) or not 1 <= period <= 1000:
+        raise FfrInputError(r.source, "timing.firmware_period_ms", period, "must be an integer 1..1000")
+    plant = r.number("plant_dt_ms", t.plant_dt_ms, positive=True)
+    if abs(period / plant - round(period / plant)) > 1e-9:
+        raise FfrInputError(r.source, "timing.plant_dt_ms", plant,
+                            "must divide the firmware period into whole plant steps")
+    delay = r.get("start_delay_ms", 0)
+    if isinstance(delay, bool) or not isinstance(delay, int) or delay < 0:
+        raise FfrInputError(r.source, "timing.start_delay_ms", delay, "must be an integer >= 0")
+    unknown = set(r.table) - {"firmware_period_ms", "plant_dt_ms", "find_limit_s", "return_limit_s",
+                              "start_delay_ms"}
+    if unknown:
+        k = sorted(unknown)[0]
+        raise FfrInputError(r.source, f"timing.{k}", r.table[k], "unknown field")
+    return Timing(period, plant, r.number("find_limit_s", t.find_limit_s, positive=True),
+                  r.number("return_limit_s", t.return_limit_s, positive=True), delay)
+
+
+def load_scenario(path: str | Path, *, seed: int | None = None) -> Scenario:
+    """Load a scenario file; ``seed`` (from the CLI) overrides the file's."""
+    p = Path(path)
+    src = str(p)
+    data = read_toml(p)
+    r = _Reader(src, data)
+    unknown = set(data) - _TOP_KEYS
+    if unknown:
+        k = sorted(unknown)[0]
+        raise FfrInputError(src, k, data[k], f"unknown field (known: {', '.join(sorted(_TOP_KEYS))})")
+    base = p.parent
+
+    def rel(key: str) -> Path | None:
+        v = data.get(key)
+        if v is None:
+            return None
+        if not isinstance(v, str):
+            raise FfrInputError(src, key, v, "must be a file path")
+        q = (base / v) if not Path(v).is_absolute() else Path(v)
+        if not q.exists():
+            raise FfrInputError(src, key, v, "file not found")
+        return q
+
+    arena = load_arena(rel("arena"))
+    robot = load_robot(rel("robot"))
+    file_seed = r.get("seed", 0)
+    if isinstance(file_seed, bool) or not isinstance(file_seed, int) or file_seed < 0:
+        raise FfrInputError(src, "seed", file_seed, "must be an integer >= 0")
+    noise = r.get("noise", "none")
+    if not isinstance(noise, str):
+        raise FfrInputError(src, "noise", noise, "must be a profile name or file")
+    if noise.endswith(".toml") or "#" in noise:
+        noise = str(base / noise)
+    candle_tab = r.sub("candle") if "candle" in data else _Reader(src, {}, "candle.")
+    room = candle_tab.get("room", None)
+    pos = candle_tab.table.get("position")
+    if room is not None and pos is not None:
+        raise FfrInputError(src, "candle.position", pos, "give either candle.room or candle.position")
+    if room is not None and (isinstance(room, bool) or not isinstance(room, int)):
+        raise FfrInputError(src, "candle.room", room, "must be a room number")
+    candle = candle_tab.point("position") if pos is not None else None
+    if candle is not None:
+        arena.check_candle(*candle, source=src)
+    elif room is not None:
+        arena.room(room)  # raises with the known ids
+    start = None
+    if "start" in data:
+        s = r.sub("start")
+        start = (s.number("x"), s.number("y"), math.radians(s.number("heading_deg", 90.0)))
+    timing = _timing(r.sub("timing")) if "timing" in data else Timing()
+    fw = r.sub("firmware").table if "firmware" in data else {}
+    ro = r.sub("robot_overrides").table if "robot_overrides" in data else {}
+    stop = r.get("stop_on_contact", False)
+    if not isinstance(stop, bool):
+        raise FfrInputError(src, "stop_on_contact", stop, "must be true or false")
+    events = data.get("events", [])
+    if not isinstance(events, list):
+        raise FfrInputError(src, "events", events, "must be an array of tables")
+    name = r.string("name", p.stem)
+    scn = make_scenario(arena=arena, robot=robot, room=room, candle=candle,
+                        seed=file_seed if seed is None else seed, noise=noise, firmware=fw,
+                        robot_overrides=ro, start=start, timing=timing, name=name, source=src,
+                        stop_on_contact=stop)
+    scn.events = events
+    return scn

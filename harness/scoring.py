@@ -1,0 +1,92 @@
+"""Mission outcome and contest score.
+
+Outcomes (the JSON contract): "home" = flame out and the robot stopped inside
+the home circle; "extinguished" = flame out, robot not (yet) home;
+"timeout" = flame still burning at the find limit; "collision" = the run was
+ended by a wall contact (scenario ``stop_on_contact``) or the robot stayed
+pushed against a wall; "error" = the firmware gave up or the link failed.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+SCORING_FILE = Path(__file__).parent / "data" / "scoring.toml"
+
+
+@dataclass(frozen=True)
+class ScoringRules:
+    incomplete_score: float
+    room_factor: dict[int, float]
+    return_trip_factor: float
+    wall_contact_penalty: float
+
+    @classmethod
+    def load(cls, path: Path = SCORING_FILE) -> ScoringRules:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        return cls(
+            incomplete_score=float(data["incomplete_score"]),
+            room_factor={int(k): float(v) for k, v in data["room_factor"].items()},
+            return_trip_factor=float(data["mode_factor"]["return_trip"]),
+            wall_contact_penalty=float(data["penalty"]["wall_contact"]),
+        )
+
+
+@dataclass
+class MissionResult:
+    outcome: str
+    room: int | None
+    candle: tuple[float, float]
+    time_to_extinguish_s: float | None
+    total_time_s: float | None
+    wall_contacts: int
+    min_wall_clearance_m: float
+    path_length_m: float
+    seed: int
+    rooms_searched: int = 0
+    score: float = 0.0
+    detail: str = ""
+    scenario: str = ""
+    link: str = "ctypes:"
+    sim_time_s: float = 0.0
+    final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    def to_json(self) -> dict[str, Any]:
+        def r(v: float | None, nd: int = 3) -> float | None:
+            return None if v is None else round(float(v), nd)
+
+        out: dict[str, Any] = {
+            "outcome": self.outcome,
+            "room": self.room,
+            "candle": [round(self.candle[0], 4), round(self.candle[1], 4)],
+            "time_to_extinguish_s": r(self.time_to_extinguish_s),
+            "total_time_s": r(self.total_time_s),
+            "wall_contacts": int(self.wall_contacts),
+            "min_wall_clearance_m": r(self.min_wall_clearance_m, 4),
+            "path_length_m": r(self.path_length_m, 3),
+            "seed": int(self.seed),
+            "rooms_searched": int(self.rooms_searched),
+            "score": r(self.score, 2),
+            "detail": self.detail,
+            "scenario": self.scenario,
+            "link": self.link,
+            "sim_time_s": r(self.sim_time_s),
+            "final_pose": [round(self.final_pose[0], 4), round(self.final_pose[1], 4),
+                           round(math.degrees(self.final_pose[2]), 2)],
+        }
+        out.update(self.extra)
+        return out
+
+
+def contest_score(rules: ScoringRules, outcome: str, time_to_extinguish_s: float | None,
+                  rooms_searched: int, wall_contacts: int) -> float:
+    if outcome not in ("home", "extinguished") or time_to_extinguish_s is None:
+        return rules.incomplete_score
+    rf = rules.room_factor.get(max(1, rooms_searched), min(rules.room_factor.values()))
+    mode = rules.return_trip_factor if outcome == "home" else 1.0
+    return time_to_extinguish_s * rf * mode + rules.wall_contact_penalty * wall_contacts
