@@ -67,6 +67,7 @@ _CFG_FLOATS_C = [
     "front_stop_mm", "front_slow_mm", "open_mm", "open_confirm_mm", "wall_seen_mm", "hallway_half_mm",
     "turn_tol_deg", "line_holdoff_mm", "room_line_max_mm", "room_entry_mm", "room_exit_mm",
     "home_advance_mm", "flame_detect", "flame_out", "flame_steer_deg", "approach_stop_mm",
+    "guard_side_mm", "guard_stop_mm",
 ]
 CONFIG_FIELDS: _F = (
     [(n, "f4", 1) for n in _CFG_FLOATS_A]

@@ -207,5 +207,9 @@ def override(robot: RobotParams, dotted: str, value: Any, source: str = "overrid
         value = float(value)
     setattr(obj, last, value)
     # Re-validate the whole set so an override can't produce an illegal robot.
-    return robot_from_dict(dataclasses.asdict(new) | {"ir": {k: dataclasses.asdict(v) for k, v in new.ir.items()}},
-                           source)
+    data = dataclasses.asdict(new) | {"ir": {k: dataclasses.asdict(v) for k, v in new.ir.items()}}
+    data.pop("source", None)
+    try:
+        return robot_from_dict(data, source)
+    except FfrInputError as exc:
+        raise FfrInputError(source, f"robot.{dotted}", value, exc.why) from None

@@ -131,6 +131,8 @@ typedef struct {
     float flame_out;             /* counts, sum below this: flame is out       */
     float flame_steer_deg;       /* heading offset for full left/right imbalance */
     float approach_stop_mm;      /* CF closer than this: stop approaching      */
+    float guard_side_mm;         /* approach: steer off walls nearer than this beside the body */
+    float guard_stop_mm;         /* approach: stop for a wall this near the front corners       */
     uint32_t fan_timeout_ms;     /* fans on at most this long per attempt      */
     uint32_t flame_out_confirm_ms;
     uint32_t verify_ms;          /* fans off, watch the flame this long        */
@@ -247,6 +249,7 @@ typedef struct {
     uint8_t flame_found;
     float entry_heading_rad;
     float scan_x_mm, scan_y_mm;    /* odometry pose where the scan was made   */
+    float line_x_mm, line_y_mm;    /* odometry position where the doorway line was met */
     float start_heading_rad;
     float best_signal;
     float best_heading_rad;

@@ -151,7 +151,7 @@ void ffr_config_default(ffr_config_t *c)
 
     c->line_holdoff_mm = 60.0f;
     c->room_line_max_mm = 450.0f;
-    c->room_entry_mm = 280.0f;
+    c->room_entry_mm = 330.0f;
     c->room_exit_mm = 340.0f;
     c->home_advance_mm = 240.0f;
 
@@ -159,6 +159,8 @@ void ffr_config_default(ffr_config_t *c)
     c->flame_out = 125.0f;
     c->flame_steer_deg = 30.0f;
     c->approach_stop_mm = 200.0f;
+    c->guard_side_mm = 70.0f;
+    c->guard_stop_mm = 35.0f;
     c->fan_timeout_ms = 8000u;
     c->flame_out_confirm_ms = 300u;
     c->verify_ms = 500u;

@@ -92,6 +92,8 @@ static const ffr_field_t k_layout[] = {
     CFG(flame_out, FFR_T_F32, 1),
     CFG(flame_steer_deg, FFR_T_F32, 1),
     CFG(approach_stop_mm, FFR_T_F32, 1),
+    CFG(guard_side_mm, FFR_T_F32, 1),
+    CFG(guard_stop_mm, FFR_T_F32, 1),
     CFG(fan_timeout_ms, FFR_T_U32, 1),
     CFG(flame_out_confirm_ms, FFR_T_U32, 1),
     CFG(verify_ms, FFR_T_U32, 1),

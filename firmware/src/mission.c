@@ -37,6 +37,8 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->room.entry_heading_rad = 0.0f;
     st->room.scan_x_mm = 0.0f;
     st->room.scan_y_mm = 0.0f;
+    st->room.line_x_mm = 0.0f;
+    st->room.line_y_mm = 0.0f;
     st->room.start_heading_rad = 0.0f;
     st->room.best_signal = 0.0f;
     st->room.best_heading_rad = 0.0f;

@@ -72,18 +72,66 @@ static int turn_to(ffr_state_t *st, float target)
     return 0;
 }
 
-/* keep off the side walls while driving freely inside a room */
-static float side_repulsion(const ffr_state_t *st)
+/*
+ * Is a flame seen in direction `dir` from the scan point outside the room,
+ * seen through the door the robot came in by? The doorway line runs through
+ * the point where it was crossed, square to the entry heading; a ray that
+ * leaves through it within half a hallway of that point leaves by the door.
+ * No candle can stand on the short stretch of that ray inside the room: the
+ * contest keeps the candle circle 33 cm clear of the doorway.
+ */
+static int through_door(const ffr_state_t *st, float dir)
+{
+    const ffr_room_state_t *r = &st->room;
+    float ce = ffr_cosf(r->entry_heading_rad);
+    float se = ffr_sinf(r->entry_heading_rad);
+    float dx = r->scan_x_mm - r->line_x_mm;
+    float dy = r->scan_y_mm - r->line_y_mm;
+    float depth = dx * ce + dy * se;  /* how far in the scan point is        */
+    float lat = -dx * se + dy * ce;   /* and how far to the side of the path */
+    float back = -ffr_cosf(dir - r->entry_heading_rad);
+    float t;
+    if (back <= 0.05f || depth <= 0.0f) {
+        return 0;
+    }
+    t = depth / back;
+    lat += t * ffr_sinf(dir - r->entry_heading_rad);
+    return ffr_absf(lat) < st->cfg.hallway_half_mm;
+}
+
+/*
+ * Approach guard: the rangers' hit points near the body. Returns a yaw rate
+ * that steers away from a wall beside the front half, and sets *stop when a
+ * wall is about to touch a front corner. The GP2D12 folds back under 10 cm,
+ * so this must act while the wall is still seen, not at contact.
+ */
+static float approach_guard(const ffr_state_t *st, int *stop)
 {
     const ffr_config_t *cfg = &st->cfg;
+    static const int rangers[3] = {FFR_IR_CF, FFR_IR_LF, FFR_IR_RF};
     float w = 0.0f;
-    float near = cfg->body_half_width_mm + 60.0f;
-    int side;
-    for (side = 0; side < 2; ++side) {
-        ffr_wall_t wall = ffr_wall_estimate(cfg, st->ir_mm, side);
-        if (wall.valid && wall.dist_mm < near) {
-            float push = (near - wall.dist_mm) * 0.02f; /* rad/s per mm */
-            w += side == FFR_SIDE_LEFT ? -push : push;
+    int k;
+    *stop = 0;
+    for (k = 0; k < 3; ++k) {
+        int i = rangers[k];
+        float d = st->ir_mm[i];
+        float a, px, py, side_gap, front_gap;
+        if (!ffr_ir_valid(cfg, d)) {
+            continue;
+        }
+        a = cfg->ir_angle_deg[i] * FFR_DEG;
+        px = cfg->ir_x_mm[i] + d * ffr_cosf(a);
+        py = cfg->ir_y_mm[i] + d * ffr_sinf(a);
+        side_gap = ffr_absf(py) - cfg->body_half_width_mm;
+        front_gap = px - cfg->body_front_mm;
+        if (px > 0.0f && side_gap < cfg->guard_side_mm && front_gap < cfg->guard_side_mm) {
+            float push = (cfg->guard_side_mm - (side_gap > 0.0f ? side_gap : 0.0f)) * 0.03f;
+            if (i != FFR_IR_CF) {
+                w += py > 0.0f ? -push : push;
+            }
+            if (side_gap < cfg->guard_stop_mm && front_gap < cfg->guard_stop_mm) {
+                *stop = 1;
+            }
         }
     }
     return w;
@@ -93,7 +141,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
 {
     const ffr_config_t *cfg = &st->cfg;
     ffr_room_state_t *r = &st->room;
-    const float sig = flame_sum(in);
+    float sig = flame_sum(in);
     const float moved = st->odo.dist_mm - r->phase_start_mm;
     const uint32_t elapsed = st->t_ms - r->phase_start_ms;
 
@@ -101,6 +149,9 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
     case RP_ENTER_LINE:
         if (st->lines.edge) {
             st->flags |= FFR_FLAG_IN_ROOM;
+            /* the line is under the line sensor, ahead of the origin */
+            r->line_x_mm = st->odo.x_mm + cfg->line_sensor_x_mm * ffr_cosf(st->odo.heading_rad);
+            r->line_y_mm = st->odo.y_mm + cfg->line_sensor_x_mm * ffr_sinf(st->odo.heading_rad);
             phase(st, RP_ENTER_IN);
         } else if (moved > cfg->room_line_max_mm) {
             ffr_fail(st, FFR_FAIL_NO_LINE);
@@ -109,7 +160,10 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         ffr_drive_heading(st, r->entry_heading_rad, cfg->room_speed_mm_s);
         return 0;
     case RP_ENTER_IN:
-        if (moved >= cfg->room_entry_mm || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
+        /* deep enough that a candle along the door's wall can be approached
+         * with room to spare; the candle circle or a wall ahead stops it sooner */
+        if (moved >= cfg->room_entry_mm || st->lines.edge
+            || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
             ffr_stop(st);
             r->scan_x_mm = st->odo.x_mm;
             r->scan_y_mm = st->odo.y_mm;
@@ -122,6 +176,9 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
     case RP_SCAN: {
         float turned = ffr_absf(st->odo.heading_rad - r->start_heading_rad);
         float dir = cfg->scan_dir ? -1.0f : 1.0f;
+        if (through_door(st, st->odo.heading_rad)) {
+            sig = 0.0f; /* a flame out there is not this room's */
+        }
         if (sig > r->best_signal) {
             r->best_signal = sig;
             r->best_heading_rad = st->odo.heading_rad;
@@ -156,7 +213,9 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
     case RP_APPROACH: {
         float bal;
         float v;
-        if (st->lines.edge || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
+        int guard_stop;
+        float guard_w = approach_guard(st, &guard_stop);
+        if (st->lines.edge || guard_stop || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
             ffr_stop(st);
             phase(st, RP_EXTINGUISH);
             return 0;
@@ -169,8 +228,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         bal = ((float)in->flame[0] - (float)in->flame[1]) / (sig > 1.0f ? sig : 1.0f);
         v = ffr_proximity_speed(cfg, st->ir_mm, cfg->approach_speed_mm_s);
         st->cmd_v_mm_s = v;
-        st->cmd_w_rad_s = ffr_clampf(cfg->heading_kp * bal * cfg->flame_steer_deg * FFR_DEG
-                                         + side_repulsion(st),
+        st->cmd_w_rad_s = ffr_clampf(cfg->heading_kp * bal * cfg->flame_steer_deg * FFR_DEG + guard_w,
                                      -cfg->turn_rate_deg_s * FFR_DEG, cfg->turn_rate_deg_s * FFR_DEG);
         return 0;
     }
@@ -213,30 +271,24 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
             phase(st, RP_BACK_TURN);
         }
         return 0;
-    case RP_BACK_TURN: {
-        float dx = r->scan_x_mm - st->odo.x_mm;
-        float dy = r->scan_y_mm - st->odo.y_mm;
-        if (dx * dx + dy * dy < 30.0f * 30.0f) {
-            phase(st, RP_LEAVE_TURN);
-            return 0;
-        }
-        if (turn_to(st, closest(st->odo.heading_rad, ffr_atan2f(dy, dx)))) {
-            phase(st, RP_BACK_DRIVE);
-        }
+    case RP_BACK_TURN:
+        /* no turning in place by the candle: it may stand by a wall. The scan
+         * point is behind (the approach drove away from it), so reverse. */
+        phase(st, RP_BACK_DRIVE);
         return 0;
-    }
     case RP_BACK_DRIVE: {
         float dx = r->scan_x_mm - st->odo.x_mm;
         float dy = r->scan_y_mm - st->odo.y_mm;
         float dist = ffr_sqrtf(dx * dx + dy * dy);
-        float ahead = dx * ffr_cosf(st->odo.heading_rad) + dy * ffr_sinf(st->odo.heading_rad);
-        if (dist < 15.0f || ahead <= 0.0f) {
+        float behind = -(dx * ffr_cosf(st->odo.heading_rad) + dy * ffr_sinf(st->odo.heading_rad));
+        if (dist < 15.0f || behind <= 0.0f) {
             ffr_stop(st);
             phase(st, RP_LEAVE_TURN);
             return 0;
         }
-        ffr_drive_heading(st, closest(st->odo.heading_rad, ffr_atan2f(dy, dx)),
-                          ffr_clampf(2.0f * dist + 60.0f, 60.0f, cfg->room_speed_mm_s));
+        /* point the tail at the scan point while backing up */
+        ffr_drive_heading(st, closest(st->odo.heading_rad, ffr_atan2f(-dy, -dx)),
+                          -ffr_clampf(2.0f * dist + 60.0f, 60.0f, cfg->room_speed_mm_s));
         return 0;
     }
     case RP_LEAVE_TURN: {

@@ -69,7 +69,7 @@ def suite_with_candle(arena, robot, cx, cy):
 
 def test_on_axis_counts_near_full_scale(arena, robot):
     model = FlameModel()
-    cx, cy = arena.room(1).default_candle  # (2.30, 0.14)
+    cx, cy = arena.room(4).default_candle  # (2.30, 0.14)
     suite, _ = suite_with_candle(arena, robot, cx, cy)
     out = new_output()
     # Turn the robot so the left sensor looks straight at the flame from ~20 cm.
@@ -89,7 +89,7 @@ def test_on_axis_counts_near_full_scale(arena, robot):
 
 
 def test_wall_between_gives_dark_level(arena, robot):
-    cx, cy = arena.room(1).default_candle  # room BR; its top wall is at y 0.92-0.94
+    cx, cy = arena.room(4).default_candle  # room BR; its top wall is at y 0.92-0.94
     suite, _ = suite_with_candle(arena, robot, cx, cy)
     out = new_output()
     suite.sample(0.0, cx, 1.20, -math.pi / 2, 0.0, 0.0, out)  # hallway, facing the candle
@@ -102,7 +102,7 @@ def test_wall_between_gives_dark_level(arena, robot):
 
 
 def test_candle_out_gives_dark_level(arena, robot):
-    cx, cy = arena.room(1).default_candle
+    cx, cy = arena.room(4).default_candle
     suite, candle = suite_with_candle(arena, robot, cx, cy)
     out = new_output()
     suite.sample(0.0, cx - 0.35, cy, 0.0, 0.0, 0.0, out)
@@ -113,7 +113,7 @@ def test_candle_out_gives_dark_level(arena, robot):
 
 
 def test_flame_behind_gives_dark_level(arena, robot):
-    cx, cy = arena.room(1).default_candle
+    cx, cy = arena.room(4).default_candle
     suite, _ = suite_with_candle(arena, robot, cx, cy)
     out = new_output()
     suite.sample(0.0, cx - 0.35, cy, math.pi, 0.0, 0.0, out)
@@ -123,7 +123,7 @@ def test_flame_behind_gives_dark_level(arena, robot):
 def test_custom_gain_and_adc_bits(arena, robot):
     from sim_plant.robot import override
     r10 = override(robot, "flame.adc_bits", 10)
-    cx, cy = arena.room(1).default_candle
+    cx, cy = arena.room(4).default_candle
     candle = Candle(cx, cy, r10, arena)
     suite = SensorSuite(arena, r10, candle, flame_model=FlameModel(gain=1e6, dark=0))
     out = new_output()

@@ -25,7 +25,7 @@ def robot():
 
 @pytest.fixture(scope="module")
 def suite(arena, robot):
-    candle = Candle(*arena.room(1).default_candle, robot, arena)
+    candle = Candle(*arena.room(4).default_candle, robot, arena)
     return SensorSuite(arena, robot, candle)
 
 
@@ -74,14 +74,14 @@ def test_black_floor(arena, robot, suite, where):
     elif where == "candle_centre":
         pts = [(suite.candle.x, suite.candle.y)]
     else:
-        (ax, ay), (bx, by) = arena.room(1).door  # vertical line at x = 1.21
+        (ax, ay), (bx, by) = arena.room(4).door  # vertical line at x = 1.21
         pts = [((ax + bx) / 2 + 0.03, (ay + by) / 2), ((ax + bx) / 2 - 0.03, (ay + by) / 2)]
     for px, py in pts:
         assert read_at(suite, robot, px, py) == 0, (where, px, py)
 
 
 def test_spot_fraction_threshold_at_line_edge(arena, robot, suite):
-    (ax, ay), (bx, by) = arena.room(1).door
+    (ax, ay), (bx, by) = arena.room(4).door
     xm, ym = (ax + bx) / 2, (ay + by) / 2
     hw = arena.line_width / 2
     rho = robot.line_sensor.spot_radius
@@ -98,8 +98,8 @@ def test_spot_fraction_threshold_at_line_edge(arena, robot, suite):
 def test_spot_model_white_fraction_setting(arena, robot):
     from sim_plant.robot import override
     strict = override(robot, "line_sensor.white_fraction", 0.9)
-    s = SensorSuite(arena, strict, Candle(*arena.room(1).default_candle, strict, arena))
-    (ax, ay), (bx, by) = arena.room(1).door
+    s = SensorSuite(arena, strict, Candle(*arena.room(4).default_candle, strict, arena))
+    (ax, ay), (bx, by) = arena.room(4).door
     xm, ym = (ax + bx) / 2, (ay + by) / 2
     hw = arena.line_width / 2
     rho = robot.line_sensor.spot_radius

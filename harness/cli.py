@@ -1,0 +1,252 @@
+"""The ``ffr`` command line (also ``python -m harness``).
+
+    ffr run [--room N | --candle X,Y | --scenario FILE.toml] [--seed S] [--link URL]
+            [--json FILE|-] [--plot FILE.png] [--noise NAME] [--set KEY=VALUE ...]
+    ffr table1 [--seed S] [--link URL] [--json FILE|-] [--plot FILE.png]
+
+Exit status: 0 every mission ended "home"; 1 a mission ended otherwise;
+2 bad input (scenario, arena or robot file, argument) or a firmware/link
+that cannot be used; the message is one line naming file, field and value.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import tempfile
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any, NoReturn
+
+from sim_plant.errors import FfrInputError
+
+# The paper's Table 1 (its robot, its parameters).
+PAPER_TABLE1 = {
+    1: (40.8, 82.6),
+    2: (84.2, 123.6),
+    3: (120.6, 161.1),
+    4: (156.8, 196.3),
+}
+
+EXIT_OK, EXIT_MISSION, EXIT_INPUT = 0, 1, 2
+
+
+class UsageError(Exception):
+    pass
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> NoReturn:  # one line, not usage + error
+        raise UsageError(message)
+
+
+def _candle(text: str) -> tuple[float, float]:
+    parts = text.split(",")
+    try:
+        if len(parts) != 2:
+            raise ValueError
+        x, y = float(parts[0]), float(parts[1])
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--candle = {text!r}: expected X,Y in metres") from None
+    if not (math.isfinite(x) and math.isfinite(y)):
+        raise argparse.ArgumentTypeError(f"--candle = {text!r}: expected finite numbers")
+    return x, y
+
+
+def _seed(text: str) -> int:
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--seed = {text!r}: expected a non-negative integer") from None
+    if v < 0:
+        raise argparse.ArgumentTypeError(f"--seed = {text!r}: expected a non-negative integer")
+    return v
+
+
+def _setting(text: str) -> tuple[str, str, Any]:
+    key, sep, raw = text.partition("=")
+    group, dot, name = key.partition(".")
+    if not sep or not dot or group not in ("firmware", "robot") or not name:
+        raise argparse.ArgumentTypeError(
+            f"--set = {text!r}: expected firmware.NAME=VALUE or robot.PATH=VALUE")
+    value: Any
+    try:
+        value = json.loads(raw)
+    except json.JSONDecodeError:
+        value = raw
+    return group, name, value
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="ffr", description="Firmware-in-the-loop missions for a fire-fighting robot.")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    def common(sp: argparse.ArgumentParser) -> None:
+        sp.add_argument("--seed", type=_seed, default=None, help="random seed (default 0 or the scenario's)")
+        sp.add_argument("--link", default="ctypes:", help="firmware link URL (default ctypes:, in-process)")
+        sp.add_argument("--json", metavar="FILE|-", help="write the result(s) as JSON")
+        sp.add_argument("--plot", metavar="FILE.png", help="draw the arena and the robot's path(s)")
+        sp.add_argument("--noise", default=None, help="sensor noise profile (none, typical, harsh, FILE.toml)")
+        sp.add_argument("--arena", default=None, help="arena TOML file (default: the 2004 arena)")
+        sp.add_argument("--robot", default=None, help="robot TOML file (default: the shipped robot)")
+        sp.add_argument("--set", dest="settings", type=_setting, action="append", default=[],
+                        metavar="KEY=VALUE", help="firmware.NAME=V or robot.PATH=V (repeatable)")
+
+    run = sub.add_parser("run", help="run one mission")
+    where = run.add_mutually_exclusive_group()
+    where.add_argument("--room", type=int, help="candle at the arena's default spot in room N")
+    where.add_argument("--candle", type=_candle, help="candle at X,Y (metres)")
+    where.add_argument("--scenario", help="scenario TOML file")
+    common(run)
+    t1 = sub.add_parser("table1", help="the four-room missions beside the paper's Table 1")
+    common(t1)
+    return p
+
+
+def _write_atomic(path: str, text: str) -> None:
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=p.parent, prefix=f".{p.name}.")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, p)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def _scenarios(args: argparse.Namespace, rooms: Sequence[int | None]) -> list[Any]:
+    from harness.scenario import load_scenario, make_scenario
+    from sim_plant.arena import load_arena
+    from sim_plant.robot import load_robot
+
+    fw = {k: v for g, k, v in args.settings if g == "firmware"}
+    ro = {k: v for g, k, v in args.settings if g == "robot"}
+    out = []
+    if getattr(args, "scenario", None):
+        scn = load_scenario(args.scenario, seed=args.seed)
+        if args.noise:
+            from sim_plant.sensors import load_noise_profile
+            scn.noise = load_noise_profile(args.noise)
+        if fw:
+            from harness.firmware_config import apply_overrides
+            from harness.links.ctypes_link import default_config
+            apply_overrides(default_config(), fw, "--set")  # validate early
+            scn.firmware.update(fw)
+        if ro:
+            from sim_plant.robot import override
+            for k, v in ro.items():
+                scn.robot = override(scn.robot, k, v, "--set")
+        return [scn]
+    arena = load_arena(args.arena)
+    robot = load_robot(args.robot)
+    for room in rooms:
+        out.append(make_scenario(arena=arena, robot=robot, room=room,
+                                 candle=getattr(args, "candle", None), seed=args.seed or 0,
+                                 noise=args.noise or "none", firmware=fw, robot_overrides=ro,
+                                 source="--set" if args.settings else "command line"))
+    return out
+
+
+def _fmt(v: float | None) -> str:
+    return "-" if v is None else f"{v:.1f}"
+
+
+def _summary(res: Any) -> str:
+    return (f"{res.scenario}: {res.outcome}"
+            f"{' (' + res.detail + ')' if res.detail else ''}; flame out {_fmt(res.time_to_extinguish_s)} s, "
+            f"home {_fmt(res.total_time_s)} s, wall contacts {res.wall_contacts}, "
+            f"min clearance {res.min_wall_clearance_m * 100:.1f} cm, path {res.path_length_m:.2f} m, "
+            f"score {res.score:.1f}")
+
+
+def table1_text(results: Sequence[Any]) -> str:
+    rooms = [r.room for r in results]
+    w = 9
+    head = f"{'':<28}" + "".join(f"{'room ' + str(n):>{w}}" for n in rooms)
+    rows = [head]
+
+    def row(label: str, vals: Sequence[str]) -> None:
+        rows.append(f"{label:<28}" + "".join(f"{v:>{w}}" for v in vals))
+
+    row("time to put flame out (s)", [_fmt(r.time_to_extinguish_s) for r in results])
+    row("  paper", [_fmt(PAPER_TABLE1.get(n, (None, None))[0]) for n in rooms])
+    row("total time until home (s)", [_fmt(r.total_time_s) for r in results])
+    row("  paper", [_fmt(PAPER_TABLE1.get(n, (None, None))[1]) for n in rooms])
+    row("outcome", [r.outcome for r in results])
+    row("wall contacts", [str(r.wall_contacts) for r in results])
+    row("min wall clearance (cm)", [f"{r.min_wall_clearance_m * 100:.1f}" for r in results])
+    row("contest score", [f"{r.score:.1f}" for r in results])
+    return "\n".join(rows)
+
+
+def _execute(args: argparse.Namespace) -> int:
+    from harness.links import open_link
+    from harness.loop import run_mission
+
+    if args.command == "table1":
+        from sim_plant.arena import load_arena
+        rooms: list[int | None] = [r.id for r in load_arena(args.arena).rooms]
+    else:
+        rooms = [args.room]
+    scenarios = _scenarios(args, rooms)
+    link = open_link(args.link)
+    missions = []
+    try:
+        for scn in scenarios:
+            res, trace = run_mission(scn, link, record=bool(args.plot))
+            missions.append((scn, trace, res))
+    finally:
+        link.close()
+    results = [m[2] for m in missions]
+    if args.command == "table1":
+        print(table1_text(results))
+        payload: Any = []
+        for r in results:
+            d = r.to_json()
+            paper = PAPER_TABLE1.get(r.room or 0)
+            d["paper_time_to_extinguish_s"] = paper[0] if paper else None
+            d["paper_total_time_s"] = paper[1] if paper else None
+            payload.append(d)
+    else:
+        payload = results[0].to_json()
+        if args.json != "-":
+            print(_summary(results[0]))
+    if args.json:
+        text = json.dumps(payload, indent=2) + "\n"
+        if args.json == "-":
+            sys.stdout.write(text)
+        else:
+            _write_atomic(args.json, text)
+    if args.plot:
+        from harness.plot import save_missions
+        save_missions(args.plot, missions)
+    return EXIT_OK if all(r.outcome == "home" for r in results) else EXIT_MISSION
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    from harness.firmware_abi import FirmwareLayoutError
+    from harness.links import LinkError
+
+    try:
+        args = build_parser().parse_args(argv)
+        if args.command == "run" and args.room is None and args.candle is None and args.scenario is None:
+            args.room = 1
+        return _execute(args)
+    except UsageError as exc:
+        print(f"ffr: error: {exc}", file=sys.stderr)
+        return EXIT_INPUT
+    except (FfrInputError, FirmwareLayoutError, LinkError) as exc:
+        print(f"ffr: error: {exc}", file=sys.stderr)
+        return EXIT_INPUT
+    except KeyboardInterrupt:
+        print("ffr: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,48 @@
+"""The firmware's own C unit tests (plain inputs, no plant), built with
+AddressSanitizer and UndefinedBehaviorSanitizer, and the Cortex-M4 build."""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def _make(target: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(["make", "-s", target], cwd=REPO, capture_output=True, text=True, timeout=600)
+
+
+def test_c_unit_tests_pass() -> None:
+    build = _make("build/host/ffr_unit_tests")
+    assert build.returncode == 0, build.stderr
+    run = subprocess.run([str(REPO / "build/host/ffr_unit_tests")], capture_output=True, text=True,
+                         timeout=120)
+    assert run.returncode == 0, run.stdout + run.stderr
+    m = re.search(r"(\d+) passed, (\d+) failed", run.stdout)
+    assert m and int(m.group(1)) > 100 and m.group(2) == "0"
+
+
+@pytest.mark.skipif(shutil.which("arm-none-eabi-gcc") is None,
+                    reason="arm-none-eabi-gcc not installed (CI installs gcc-arm-none-eabi)")
+def test_cortex_m4_build_without_warnings() -> None:
+    res = _make("firmware-arm")
+    assert res.returncode == 0, res.stderr
+    assert "warning" not in res.stderr.lower()
+    m = re.search(r"cortex-m4: flash (\d+) bytes .* RAM (\d+) bytes", res.stdout)
+    assert m, res.stdout
+    assert int(m.group(1)) < 64 * 1024 and int(m.group(2)) < 16 * 1024
+
+
+def test_no_heap_no_double_no_platform_headers() -> None:
+    for src in (REPO / "firmware" / "src").glob("*.[ch]"):
+        text = src.read_text()
+        code = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
+        assert not re.search(r"\b(malloc|calloc|realloc|free)\s*\(", code), src
+        assert not re.search(r"\bdouble\b", code), src
+        for inc in re.findall(r'#include\s*[<"]([^>"]+)[>"]', code):
+            assert inc in {"ffr.h", "ffr_internal.h", "stdint.h", "stddef.h"}, (src, inc)

@@ -1,0 +1,68 @@
+"""The Python view of the firmware's structs against the library's own layout."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+
+from harness.firmware_abi import (
+    CONFIG_DTYPE,
+    INPUTS_DTYPE,
+    OUTPUTS_DTYPE,
+    S_CONFIG,
+    S_INPUTS,
+    FirmwareLayoutError,
+    check_layout,
+)
+from harness.links import LinkError, open_link
+from harness.links.ctypes_link import DEFAULT_LIB, default_config, load_library
+
+
+def test_library_layout_matches() -> None:
+    _, layout = load_library(str(DEFAULT_LIB))
+    check_layout(layout, "lib")
+    assert layout.sizes[S_INPUTS] == INPUTS_DTYPE.itemsize == 32
+    assert layout.sizes[S_CONFIG] == CONFIG_DTYPE.itemsize
+    assert OUTPUTS_DTYPE.itemsize == 24
+    assert layout.version >> 16 == 1
+
+
+def _doctored(**change):
+    _, layout = load_library(str(DEFAULT_LIB))
+    fields = list(layout.fields)
+    for i, f in enumerate(fields):
+        if f[0] == change["sid"] and f[1] == change["name"]:
+            fields[i] = (f[0], change.get("rename", f[1]), change.get("code", f[2]),
+                         f[3] + change.get("shift", 0), f[4])
+    return dataclasses.replace(layout, fields=fields)
+
+
+@pytest.mark.parametrize(
+    ("change", "expect"),
+    [
+        ({"sid": S_INPUTS, "name": "flame", "shift": 2}, "inputs.flame: offset"),
+        ({"sid": S_CONFIG, "name": "cruise_speed_mm_s", "code": "i4"}, "config.cruise_speed_mm_s: type"),
+        ({"sid": S_INPUTS, "name": "line", "rename": "lines"}, "inputs.line: the library has field 'lines'"),
+    ],
+)
+def test_mismatched_library_refused_naming_the_field(change, expect: str) -> None:
+    with pytest.raises(FirmwareLayoutError, match=expect):
+        check_layout(_doctored(**change), "libffr.so")
+
+
+def test_missing_library_is_a_clear_error(tmp_path) -> None:
+    with pytest.raises(LinkError, match="not found"):
+        open_link(f"ctypes:{tmp_path / 'nope.so'}")
+
+
+def test_defaults_come_from_the_firmware() -> None:
+    cfg = default_config()
+    assert cfg["route_len"] > 20
+    assert cfg["ir_k_mv_mm"] == pytest.approx(332000.0)
+    assert list(cfg["return_start"]) == sorted(cfg["return_start"])
+
+
+def test_unknown_link_scheme() -> None:
+    with pytest.raises(LinkError, match="unknown scheme"):
+        open_link("carrier-pigeon:1")

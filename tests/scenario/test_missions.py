@@ -1,0 +1,59 @@
+"""Whole missions, firmware in the loop: the acceptance criteria of the product.
+
+For every room, three legal candle positions (the room's far corner, the
+arena file's default, among them), default robot, no noise: flame out, robot
+home, no wall touched, within the contest's limits. And the times beside the
+paper's Table 1.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from harness.cli import PAPER_TABLE1
+from harness.loop import run_mission
+from harness.scenario import make_scenario
+
+FIND_LIMIT_S = 300.0
+RETURN_LIMIT_S = 120.0
+
+CANDLES = {
+    1: [None, (1.34, 1.455), (1.85, 1.80)],
+    2: [None, (0.12, 2.37), (0.65, 2.05)],
+    3: [None, (0.12, 0.75), (0.55, 1.20)],
+    4: [None, (2.30, 0.80), (1.80, 0.15)],
+}
+CASES = [(room, c) for room, cs in CANDLES.items() for c in cs]
+
+
+@pytest.mark.parametrize(("room", "candle"), CASES,
+                         ids=[f"room{r}-{'corner' if c is None else c}" for r, c in CASES])
+def test_mission_succeeds(room: int, candle) -> None:
+    scn = make_scenario(room=room) if candle is None else make_scenario(candle=candle)
+    assert scn.room == room
+    res, trace = run_mission(scn)
+    assert res.outcome == "home", res.detail
+    assert res.wall_contacts == 0
+    assert res.min_wall_clearance_m > 0.0
+    assert res.time_to_extinguish_s is not None and res.total_time_s is not None
+    assert res.time_to_extinguish_s <= FIND_LIMIT_S
+    assert res.total_time_s - res.time_to_extinguish_s <= RETURN_LIMIT_S
+    # the fans ran, and only around the time the flame went out
+    fan_t = trace.t[trace.actuators[:, 2] > 0]
+    assert len(fan_t) > 0 and fan_t.min() < res.time_to_extinguish_s
+    # ends stopped: the last command is motors off
+    assert tuple(trace.actuators[-1, :2]) == (0, 0)
+
+
+@pytest.mark.parametrize("room", [1, 2, 3, 4])
+def test_faster_than_the_paper(room: int) -> None:
+    res, _ = run_mission(make_scenario(room=room), record=False)
+    paper_out, paper_home = PAPER_TABLE1[room]
+    assert res.outcome == "home"
+    assert res.time_to_extinguish_s < paper_out
+    assert res.total_time_s < paper_home
+
+
+def test_times_grow_with_the_room_number() -> None:
+    outs = [run_mission(make_scenario(room=r), record=False)[0].time_to_extinguish_s for r in (1, 2, 3, 4)]
+    assert outs == sorted(outs)
