@@ -8,11 +8,14 @@ paper's Table 1.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from harness.cli import PAPER_TABLE1
 from harness.loop import run_mission
 from harness.scenario import make_scenario
+from sim_plant.arena import load_arena
 
 FIND_LIMIT_S = 300.0
 RETURN_LIMIT_S = 120.0
@@ -57,3 +60,18 @@ def test_faster_than_the_paper(room: int) -> None:
 def test_times_grow_with_the_room_number() -> None:
     outs = [run_mission(make_scenario(room=r), record=False)[0].time_to_extinguish_s for r in (1, 2, 3, 4)]
     assert outs == sorted(outs)
+
+
+DOORS_MOVED = Path(__file__).parent / "data" / "arena_doors_moved.toml"
+
+
+@pytest.mark.parametrize("room", [1, 2, 3, 4])
+def test_doors_moved_along_their_walls(room: int) -> None:
+    """The firmware navigates by its sensors, not stored coordinates: with the
+    doors of rooms 1 and 2 moved along their walls (later contest rules do
+    that), the same firmware and route still find every room."""
+    arena = load_arena(DOORS_MOVED)
+    assert arena.room(1).door != load_arena().room(1).door
+    res, _ = run_mission(make_scenario(arena=arena, room=room), record=False)
+    assert res.outcome == "home", res.detail
+    assert res.wall_contacts == 0
