@@ -23,7 +23,7 @@ HOST_CFLAGS := $(CSTD) -O2 -fPIC
 ARM_CFLAGS  := $(CSTD) -Os -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 \
                -ffunction-sections -fdata-sections
 
-.PHONY: all setup run test bench firmware firmware-host firmware-arm firmware-test lint clean
+.PHONY: all setup run test bench firmware firmware-host firmware-arm firmware-boards firmware-test selftest lint clean
 
 all: firmware-host
 
@@ -59,7 +59,31 @@ $(BUILD)/arm/ffr_size_probe.elf: $(FW_SRCS) $(FW_HDRS) firmware/boards/size_prob
 firmware-arm: $(BUILD)/arm/ffr_size_probe.elf
 	@$(ARM_SIZE) $< | awk 'NR==2 { printf "cortex-m4: flash %d bytes (text %d + data %d), RAM %d bytes (data %d + bss %d)\n", $$1+$$2, $$1, $$2, $$2+$$3, $$2, $$3 }'
 
-firmware: firmware-host firmware-arm
+firmware: firmware-host firmware-arm firmware-boards
+
+# ---- boards ----------------------------------------------------------------
+BOARD_COMMON := firmware/boards/common/selftest.c
+MPS2_DIR := firmware/boards/mps2-an386
+MPS2_SRCS := $(MPS2_DIR)/startup.c $(MPS2_DIR)/uart_cmsdk.c
+MPS2_LDFLAGS := -T $(MPS2_DIR)/mps2_an386.ld -nostartfiles -Wl,--gc-sections --specs=nano.specs --specs=nosys.specs
+
+$(BUILD)/arm/mps2-an386-selftest.elf: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) $(MPS2_SRCS) $(MPS2_DIR)/selftest_main.c $(MPS2_DIR)/*.h $(MPS2_DIR)/*.ld Makefile
+	@mkdir -p $(dir $@)
+	$(ARM_CC) $(ARM_CFLAGS) -I$(MPS2_DIR) -Ifirmware/boards/common $(MPS2_LDFLAGS) -o $@ \
+		$(FW_SRCS) $(BOARD_COMMON) $(MPS2_SRCS) $(MPS2_DIR)/selftest_main.c
+
+$(BUILD)/host/ffr_selftest: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) firmware/boards/host_selftest/main.c Makefile
+	@mkdir -p $(dir $@)
+	$(CC) $(CSTD) -O2 -Ifirmware/boards/common -o $@ $(FW_SRCS) $(BOARD_COMMON) firmware/boards/host_selftest/main.c
+
+firmware-boards: $(BUILD)/arm/mps2-an386-selftest.elf $(BUILD)/host/ffr_selftest
+
+# Host and Cortex-M4 (on QEMU) step the same synthetic mission: same checksum?
+QEMU ?= qemu-system-arm
+selftest: firmware-boards
+	@$(BUILD)/host/ffr_selftest
+	@timeout 60 $(QEMU) -M mps2-an386 -nographic -monitor none -serial stdio -semihosting \
+		-kernel $(BUILD)/arm/mps2-an386-selftest.elf | grep ffr-selftest
 
 # ---- Python ----------------------------------------------------------------
 lint: setup

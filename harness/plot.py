@@ -97,6 +97,9 @@ def save_missions(path: str | Path, missions: Sequence[tuple[Scenario, Trace, Mi
     os.close(fd)
     try:
         fig.savefig(tmp, dpi=110)
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)  # mkstemp makes 0600; outputs are ordinary files
         os.replace(tmp, p)
     finally:
         plt.close(fig)

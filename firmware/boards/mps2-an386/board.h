@@ -1,0 +1,18 @@
+/* Board services for the mps2-an386 build: UART, millisecond clock, exit. */
+#ifndef FFR_BOARD_H
+#define FFR_BOARD_H
+#include <stdint.h>
+
+#define BOARD_CPU_HZ 25000000u
+
+void board_clock_init(void);
+uint32_t board_millis(void);
+void board_exit(int status);
+
+void uart_init(void);
+void uart_putc(uint8_t c);
+void uart_write(const uint8_t *p, uint32_t n);
+void uart_puts(const char *s);
+/* -1 when nothing has arrived */
+int uart_getc(void);
+#endif

@@ -1,0 +1,75 @@
+/*
+ * Start-up for the Cortex-M4 on QEMU's mps2-an386: vector table, reset
+ * handler (copy .data, zero .bss, enable the FPU), SysTick millisecond clock.
+ */
+#include <stdint.h>
+
+#include "board.h"
+
+extern uint32_t _sidata, _sdata, _edata, _sbss, _ebss, _estack;
+int main(void);
+void reset_handler(void);
+void default_handler(void);
+void systick_handler(void);
+
+#define SCB_CPACR (*(volatile uint32_t *)0xE000ED88u)
+#define SYST_CSR (*(volatile uint32_t *)0xE000E010u)
+#define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
+#define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
+
+/* the one piece of board state an interrupt must reach */
+static volatile uint32_t g_ms;
+
+/* initial stack pointer, then the 15 system exception handlers */
+typedef struct {
+    uint32_t *sp;
+    void (*handler[15])(void);
+} vector_table_t;
+
+__attribute__((section(".vectors"), used)) static const vector_table_t vectors = {
+    &_estack,
+    {reset_handler, default_handler, default_handler, default_handler, default_handler, default_handler, 0, 0, 0,
+     0, default_handler, default_handler, 0, default_handler, systick_handler},
+};
+
+void reset_handler(void)
+{
+    uint32_t *src = &_sidata;
+    uint32_t *dst;
+    for (dst = &_sdata; dst < &_edata;) {
+        *dst++ = *src++;
+    }
+    for (dst = &_sbss; dst < &_ebss;) {
+        *dst++ = 0u;
+    }
+    SCB_CPACR |= 0xFu << 20; /* CP10, CP11: the FPU, before any float code runs */
+    __asm__ volatile("dsb\n isb");
+    (void)main();
+    board_exit(0);
+}
+
+void default_handler(void)
+{
+    board_exit(99);
+}
+
+void systick_handler(void) { g_ms++; }
+
+void board_clock_init(void)
+{
+    SYST_RVR = BOARD_CPU_HZ / 1000u - 1u;
+    SYST_CVR = 0u;
+    SYST_CSR = 7u; /* processor clock, interrupt, enable */
+}
+
+uint32_t board_millis(void) { return g_ms; }
+
+/* ARM semihosting SYS_EXIT: QEMU (-semihosting) ends with this status. */
+void board_exit(int status)
+{
+    register uint32_t r0 __asm__("r0") = 0x18u;
+    register uint32_t r1 __asm__("r1") = status == 0 ? 0x20026u : 0x20024u; /* ApplicationExit / RunTimeError */
+    for (;;) {
+        __asm__ volatile("bkpt 0xAB" : : "r"(r0), "r"(r1) : "memory");
+    }
+}

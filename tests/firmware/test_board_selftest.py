@@ -1,0 +1,29 @@
+"""Host and Cortex-M4 builds step the same synthetic mission to the same bits.
+
+The self-test (firmware/boards/common/selftest.c) folds every output of
+20,000 firmware ticks into a checksum; built for the host (glibc) and for the
+mps2-an386 board (newlib, run on QEMU), the two lines must be equal.
+"""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+@pytest.mark.skipif(shutil.which("arm-none-eabi-gcc") is None or shutil.which("qemu-system-arm") is None,
+                    reason="needs arm-none-eabi-gcc and qemu-system-arm (CI installs both)")
+def test_host_and_cortex_m4_checksums_equal() -> None:
+    res = subprocess.run(["make", "-s", "selftest"], cwd=REPO, capture_output=True, text=True, timeout=300)
+    assert res.returncode == 0, res.stdout + res.stderr
+    lines = re.findall(r"ffr-selftest ticks=(\d+) checksum=([0-9a-f]{8}) state=(\d+)", res.stdout)
+    assert len(lines) == 2, res.stdout
+    host, target = lines
+    assert host[0] == "20000"
+    assert host == target
