@@ -187,7 +187,8 @@ class Mission:
                 done_t = t
                 break
             if state == ST_FAILED:
-                outcome = "error"
+                # the firmware gave up; if the flame is out it is still "extinguished" (below)
+                outcome = "failed"
                 detail = "firmware: " + FAIL_NAMES.get(int(out_bytes[15]), f"code {int(out_bytes[15])}")
                 break
             plant.apply(pwm_l, pwm_r)
@@ -212,6 +213,8 @@ class Mission:
                 break
 
         ext = candle.extinguished_at if not candle.lit else None
+        if outcome == "failed":
+            outcome = "extinguished" if ext is not None else "error"
         if not outcome:
             hx, hy = scn.arena.home_center
             at_home = math.hypot(plant.x - hx, plant.y - hy) <= scn.arena.home_radius
@@ -221,8 +224,6 @@ class Mission:
                 outcome, detail = "extinguished", "stopped outside the home circle"
             else:
                 outcome, detail = "error", "firmware stopped with the flame still burning"
-        elif outcome == "error" and ext is not None and not detail.startswith(link.url):
-            outcome = "extinguished" if "firmware" in detail else outcome
         rooms = int(out_bytes[11])
         # the candle's room counts as searched even when the robot never left it
         rooms_searched = rooms + (1 if ext is not None else 0)

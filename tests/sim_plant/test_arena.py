@@ -9,11 +9,6 @@ from sim_plant.arena import DEFAULT_ARENA, load_arena
 from sim_plant.errors import CandlePlacementError, FfrInputError
 
 
-@pytest.fixture(scope="module")
-def arena():
-    return load_arena()
-
-
 def test_default_arena_shape(arena) -> None:
     assert arena.size == (2.44, 2.44)
     assert arena.wall_height == pytest.approx(0.33)

@@ -6,21 +6,9 @@ import math
 
 import pytest
 
-from sim_plant.arena import load_arena
 from sim_plant.candle import Candle
-from sim_plant.robot import load_robot
 
 DT = 0.01
-
-
-@pytest.fixture(scope="module")
-def arena():
-    return load_arena()
-
-
-@pytest.fixture(scope="module")
-def robot():
-    return load_robot()
 
 
 @pytest.fixture

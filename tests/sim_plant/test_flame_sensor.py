@@ -7,9 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from sim_plant.arena import load_arena
 from sim_plant.candle import Candle
-from sim_plant.robot import load_robot
 from sim_plant.sensors import CH_FLAME_L, CH_FLAME_R, FlameModel, SensorSuite, new_output
 from sim_plant.sensors.flame_sensor import flame_intensity, flame_k, flame_sensor_fc
 
@@ -21,16 +19,6 @@ def k_expected(dtheta_deg: float) -> float:
     """The documented lobe: raised cosine reaching 0 at ±60°."""
     a = abs(dtheta_deg)
     return 0.0 if a >= 60.0 else 0.5 * (1.0 + math.cos(math.pi * a / 60.0))
-
-
-@pytest.fixture(scope="module")
-def arena():
-    return load_arena()
-
-
-@pytest.fixture(scope="module")
-def robot():
-    return load_robot()
 
 
 def test_k_curve_shape():

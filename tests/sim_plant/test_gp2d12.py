@@ -7,25 +7,13 @@ import math
 import numpy as np
 import pytest
 
-from sim_plant.arena import load_arena
 from sim_plant.candle import Candle
-from sim_plant.robot import load_robot
 from sim_plant.sensors import CH_IR, Gp2d12Model, SensorSuite, distance_to_mv, new_output
 
 # DESIGN.md, datasheet typical curve: cm -> V.
 DATASHEET = [(10, 2.45), (12, 2.125), (14, 1.86), (16, 1.66), (18, 1.52), (20, 1.38),
              (25, 1.14), (30, 0.975), (35, 0.85), (40, 0.76), (45, 0.68), (50, 0.62),
              (60, 0.54), (70, 0.48), (80, 0.42)]
-
-
-@pytest.fixture(scope="module")
-def arena():
-    return load_arena()
-
-
-@pytest.fixture(scope="module")
-def robot():
-    return load_robot()
 
 
 def make_suite(arena, robot, **kw):

@@ -7,10 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from sim_plant.arena import load_arena
 from sim_plant.candle import Candle
 from sim_plant.errors import FfrInputError
-from sim_plant.robot import load_robot
 from sim_plant.sensors import (
     CH_ENC_L,
     CH_ENC_R,
@@ -29,16 +27,6 @@ from sim_plant.sensors import (
 from sim_plant.sensors.noise import BLOCK, NoiseStream
 
 N_TICKS = 3000  # long enough for several refills of the random blocks (checked below)
-
-
-@pytest.fixture(scope="module")
-def arena():
-    return load_arena()
-
-
-@pytest.fixture(scope="module")
-def robot():
-    return load_robot()
 
 
 def trajectory(n):
