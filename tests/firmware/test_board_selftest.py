@@ -27,3 +27,7 @@ def test_host_and_cortex_m4_checksums_equal() -> None:
     host, target = lines
     assert host[0] == "20000"
     assert host == target
+    prof = re.search(r"ffr-profile steps=20000 mean_insn=(\d+) max_insn=(\d+)", res.stdout)
+    assert prof, res.stdout
+    mean, worst = int(prof.group(1)), int(prof.group(2))
+    assert 0 < mean <= worst < 20000  # the stated budget (Makefile, bench)

@@ -18,7 +18,7 @@ static uint32_t lcg(uint32_t *s)
     return *s >> 8;
 }
 
-void ffr_selftest_run(uint32_t ticks, ffr_selftest_result_t *res)
+void ffr_selftest_run(uint32_t ticks, uint32_t (*clock)(void), ffr_selftest_result_t *res)
 {
     /* static: board RAM, not stack; reset on every run below */
     static ffr_state_t st;
@@ -38,6 +38,8 @@ void ffr_selftest_run(uint32_t ticks, ffr_selftest_result_t *res)
     in.enc[1] = 0;
     in.line = 0u;
     in.start = 1u;
+    res->clock_sum = 0u;
+    res->clock_max = 0u;
     for (k = 0; k < ticks; ++k) {
         for (i = 0; i < FFR_IR_COUNT; ++i) {
             in.ir_mv[i] = (uint16_t)(300u + lcg(&seed) % 2200u);
@@ -45,7 +47,16 @@ void ffr_selftest_run(uint32_t ticks, ffr_selftest_result_t *res)
         in.flame[0] = (uint16_t)(40u + lcg(&seed) % 900u);
         in.flame[1] = (uint16_t)(40u + lcg(&seed) % 900u);
         in.line = (uint8_t)((lcg(&seed) % 97u) == 0u);
-        ffr_step(&st, &in, &out);
+        if (clock != 0) {
+            uint32_t c0 = clock();
+            uint32_t dc;
+            ffr_step(&st, &in, &out);
+            dc = (clock() - c0) & 0xFFFFFFu;
+            res->clock_sum += dc;
+            res->clock_max = dc > res->clock_max ? dc : res->clock_max;
+        } else {
+            ffr_step(&st, &in, &out);
+        }
         h = fnv_bytes(h, (const uint8_t *)&out, (uint32_t)sizeof(out));
         for (i = 0; i < 2; ++i) {
             enc[i] += (float)out.pwm[i] * 0.012f;

@@ -14,9 +14,13 @@ typedef struct {
     uint32_t checksum;
     int16_t last_pwm[2];
     uint8_t last_state;
+    uint32_t clock_sum; /* with a clock: sum and worst of its counts per ffr_step */
+    uint32_t clock_max;
 } ffr_selftest_result_t;
 
-void ffr_selftest_run(uint32_t ticks, ffr_selftest_result_t *res);
+/* `clock` (may be NULL) returns a free-running up-counter, 24 bits wide, read
+ * around every ffr_step to profile it. */
+void ffr_selftest_run(uint32_t ticks, uint32_t (*clock)(void), ffr_selftest_result_t *res);
 /* "ffr-selftest ticks=N checksum=XXXXXXXX state=S" into buf (>= 64 bytes) */
 void ffr_selftest_format(const ffr_selftest_result_t *res, char *buf);
 #endif
