@@ -72,7 +72,7 @@ test: setup firmware-host $(BUILD)/host/ffr_unit_tests
 
 run: setup firmware-host
 	@mkdir -p $(OUT)
-	$(VENV)/bin/ffr table1 --plot $(OUT)/missions.png --json $(OUT)/table1.json
+	$(VENV)/bin/ffr table1 --plot $(OUT)/missions.png --json $(OUT)/table1.json --replay-dir $(OUT)
 
 bench: setup firmware-host
 	$(PY) -m harness.bench
