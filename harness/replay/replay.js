@@ -230,7 +230,7 @@
   };
   const TOP_ZOOM = 1.55;
   const CAMERAS = {
-    orbit: { eye: { x: 0.2, y: -0.95, z: 0.8 }, up: { x: 0, y: 0, z: 1 }, center: { x: 0, y: 0, z: -0.1 },
+    orbit: { eye: { x: 0.12, y: -1.0, z: 0.9 }, up: { x: 0, y: 0, z: 1 }, center: { x: 0, y: 0, z: -0.1 },
       projection: { type: "perspective" } },
     top: { eye: { x: 0, y: 0, z: 1.0 }, up: { x: 0, y: 1, z: 0 }, center: { x: 0, y: 0, z: 0 },
       projection: { type: "orthographic" } },
@@ -446,7 +446,7 @@
   slider.addEventListener("input", () => { seek(parseFloat(slider.value) / 1000); });
   document.querySelectorAll("[data-view]").forEach((b) => b.addEventListener("click", () => setView(b.dataset.view)));
   document.addEventListener("keydown", function (ev) {
-    if (ev.target && ev.target.tagName === "SELECT") return;
+    if (ev.target && (ev.target.tagName === "SELECT" || ev.target.tagName === "INPUT")) return;  // they have their own keys
     if (ev.key === " ") { ev.preventDefault(); setPlaying(!playing); }
     else if (ev.key === "ArrowRight") seek(t + 1 / M.fps);
     else if (ev.key === "ArrowLeft") seek(t - 1 / M.fps);
