@@ -235,6 +235,8 @@ def _execute(args: argparse.Namespace) -> int:
                 save_replay(path, scn, trace, res)
             except OSError as exc:  # written atomically: nothing is left half-written
                 raise UsageError(f"{path}: cannot write the replay: {exc.strerror or exc}") from None
+            except ValueError as exc:  # a mission that stopped before its first tick
+                raise UsageError(f"{path}: no replay: {exc}") from None
     return EXIT_OK if all(r.outcome == "home" for r in results) else EXIT_MISSION
 
 

@@ -279,7 +279,7 @@ def build_replay(scn: Scenario, trace: Trace, result: MissionResult, fps: float 
                  chart_hz: float = DEFAULT_CHART_HZ) -> ReplayData:
     """Downsample a mission's trace into animation frames and chart samples."""
     if len(trace.t) == 0:
-        raise ValueError("the trace is empty: run the mission with record=True")
+        raise ValueError("the mission recorded no tick (run it with record=True)")
     t = trace.t
     ti = trace.i
     fi = frame_indices(t, fps)

@@ -113,7 +113,7 @@ def test_fan_angle_advances_only_while_the_fans_run() -> None:
 
 
 def test_empty_trace_is_refused() -> None:
-    with pytest.raises(ValueError, match="empty"):
+    with pytest.raises(ValueError, match="no tick"):
         build_replay(make_scenario(room=1), Trace(np.zeros((0, N_F)), np.zeros((0, N_I), np.int32)), _result(None))
 
 

@@ -131,3 +131,24 @@ def test_unwritable_folder_is_refused_before_running(tmp_path, capsys, monkeypat
     err = capsys.readouterr().err
     assert "cannot write in" in err and str(tmp_path) in err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_mission_without_a_tick_gives_no_replay_and_one_line(tmp_path, capsys, monkeypatch) -> None:
+    import numpy as np
+
+    import harness.loop
+    from harness.loop import N_F, N_I, Trace
+    from harness.scoring import MissionResult
+
+    def dead_link(scn, link, record=True, rules=None):
+        res = MissionResult(outcome="error", room=scn.room, candle=scn.candle, time_to_extinguish_s=None,
+                            total_time_s=None, wall_contacts=0, min_wall_clearance_m=0.0, path_length_m=0.0,
+                            seed=0, detail="link: no answer")
+        return res, Trace(np.zeros((0, N_F)), np.zeros((0, N_I), np.int32))
+
+    monkeypatch.setattr(harness.loop, "run_mission", dead_link)
+    out = tmp_path / "r.html"
+    assert main(["run", "--room", "1", "--replay", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no tick" in err and "Traceback" not in err
+    assert list(tmp_path.iterdir()) == []
