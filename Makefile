@@ -96,7 +96,7 @@ test: setup firmware-host $(BUILD)/host/ffr_unit_tests
 
 run: setup firmware-host
 	@mkdir -p $(OUT)
-	$(VENV)/bin/ffr table1 --plot $(OUT)/missions.png --json $(OUT)/table1.json
+	$(VENV)/bin/ffr table1 --plot $(OUT)/missions.png --json $(OUT)/table1.json --replay-dir $(OUT)
 
 # Budget for ffr_step on the target: 20,000 instructions (an 84 MHz Cortex-M4 at
 # ~1.5 cycles per instruction spends 0.36 ms of its 10 ms tick on navigation).

@@ -1,8 +1,8 @@
 """The ``ffr`` command line (also ``python -m harness``).
 
     ffr run [--room N | --candle X,Y | --scenario FILE.toml] [--seed S] [--link URL]
-            [--json FILE|-] [--plot FILE.png] [--noise NAME] [--set KEY=VALUE ...]
-    ffr table1 [--seed S] [--link URL] [--json FILE|-] [--plot FILE.png]
+            [--json FILE|-] [--plot FILE.png] [--replay FILE.html] [--noise NAME] [--set KEY=VALUE ...]
+    ffr table1 [--seed S] [--link URL] [--json FILE|-] [--plot FILE.png] [--replay-dir DIR]
 
 Exit status: 0 every mission ended "home"; 1 a mission ended otherwise;
 2 bad input (scenario, arena or robot file, argument) or a firmware/link
@@ -101,8 +101,10 @@ def build_parser() -> argparse.ArgumentParser:
     where.add_argument("--candle", type=_candle, help="candle at X,Y (metres)")
     where.add_argument("--scenario", help="scenario TOML file")
     common(run)
+    run.add_argument("--replay", metavar="FILE.html", help="write an interactive 3D replay (one offline HTML file)")
     t1 = sub.add_parser("table1", help="the four-room missions beside the paper's Table 1")
     common(t1)
+    t1.add_argument("--replay-dir", metavar="DIR", help="write each room's replay as DIR/replay_roomN.html")
     return p
 
 
@@ -201,11 +203,12 @@ def _execute(args: argparse.Namespace) -> int:
     else:
         rooms = [args.room]
     scenarios = _scenarios(args, rooms)
+    replays = _replay_paths(args, scenarios)  # checked before the missions run
     link = open_link(args.link)
     missions = []
     try:
         for scn in scenarios:
-            res, trace = run_mission(scn, link, record=bool(args.plot))
+            res, trace = run_mission(scn, link, record=bool(args.plot or replays))
             missions.append((scn, trace, res))
     finally:
         link.close()
@@ -232,7 +235,39 @@ def _execute(args: argparse.Namespace) -> int:
     if args.plot:
         from harness.plot import save_missions
         save_missions(args.plot, missions)
+    if replays:
+        from harness.replay import save_replay
+        for path, (scn, trace, res) in zip(replays, missions, strict=True):
+            try:
+                save_replay(path, scn, trace, res)
+            except OSError as exc:  # written atomically: nothing is left half-written
+                raise UsageError(f"{path}: cannot write the replay: {exc.strerror or exc}") from None
+            except ValueError as exc:  # a mission that stopped before its first tick
+                raise UsageError(f"{path}: no replay: {exc}") from None
     return EXIT_OK if all(r.outcome == "home" for r in results) else EXIT_MISSION
+
+
+def _replay_paths(args: argparse.Namespace, scenarios: Sequence[Any]) -> list[Path]:
+    """Where the replays go (one per scenario), or []; a one-line UsageError for a path that cannot be written."""
+    if getattr(args, "replay", None):
+        paths = [Path(args.replay)]
+        if paths[0].suffix.lower() not in (".html", ".htm"):
+            raise UsageError(f"--replay = {args.replay!r}: expected a file name ending in .html")
+    elif getattr(args, "replay_dir", None):
+        d = Path(args.replay_dir)
+        if d.exists() and not d.is_dir():
+            raise UsageError(f"--replay-dir = {args.replay_dir!r}: not a directory")
+        paths = [d / f"replay_{s.name}.html" for s in scenarios]
+    else:
+        return []
+    from harness.replay.html import check_target
+
+    for p in paths:
+        why = check_target(p)
+        if why:
+            flag = "--replay" if getattr(args, "replay", None) else "--replay-dir"
+            raise UsageError(f"{flag} = {str(args.replay if flag == '--replay' else args.replay_dir)!r}: {why}")
+    return paths
 
 
 def main(argv: Sequence[str] | None = None) -> int:
