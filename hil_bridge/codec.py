@@ -261,6 +261,10 @@ class CanReassembler:
         if seg == 0:
             self._buf = bytearray((t,))
             self._type, self._next = t, 0
+        elif self._type == 0:
+            return None  # the rest of a message already given up on: reported once is enough
+        elif self._type == t and seg + 1 == self._next:
+            return None  # the segment just taken, again: CAN's double reception when an ACK was lost
         elif self._type != t or self._next != seg:
             want = self._next
             self.reset()

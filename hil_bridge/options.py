@@ -15,8 +15,9 @@ from hil_bridge.faults import FaultSpec
 
 @dataclass
 class WireOptions:
-    timeout_s: float = 0.02          # first wait for an answer; each retry waits twice as long
-    retries: int = 5                 # sends again at most this often (0.02 s: 1.26 s in all)
+    timeout_s: float = 0.02          # first wait for an answer; after each silence twice as long
+    retries: int = 10                # send an inputs frame again at most this often ...
+    step_budget_s: float = 1.5       # ... and within this time, then give up
     handshake_timeout_s: float = 2.0  # wait for INFO, and for READY, at most this long in all
     watchdog_ms: int = 0             # asked of the board in HELLO (0: the board's own)
     baud: int = 115200               # serial: real ports only
@@ -62,6 +63,6 @@ def parse_url(url: str) -> tuple[str, WireOptions]:
         opts.faults = FaultSpec(**fault_kw)  # type: ignore[arg-type]
     except ValueError as exc:
         raise LinkError(f"--link = {url!r}: {exc}") from None
-    if opts.timeout_s <= 0 or opts.retries < 0 or opts.handshake_timeout_s <= 0:
+    if opts.timeout_s <= 0 or opts.retries < 0 or opts.handshake_timeout_s <= 0 or opts.step_budget_s <= 0:
         raise LinkError(f"--link = {url!r}: timeouts must be > 0 and retries >= 0")
     return target, opts

@@ -29,6 +29,9 @@ from hil_bridge.options import WireOptions
 
 FW_VERSION_MAJOR = 1  # the firmware API this harness speaks (FFR_VERSION_MAJOR)
 _HANDSHAKE_TRY_S = 0.05  # first wait for INFO / READY (a config is 650 bytes: 60 ms at 115200 baud)
+# A RESET is 82 classic CAN frames: where 2% of frames are lost, one in five gets through whole,
+# so HELLO and RESET may be sent many times; handshake_timeout_s still bounds the wait.
+_HANDSHAKE_RETRIES = 50
 
 
 @dataclass
@@ -84,29 +87,33 @@ class WireLink(FirmwareLink):
     def _where(self) -> str:
         return "during the handshake" if self._tick is None else f"at tick {self._tick} (t {self._t_ms / 1000:.2f} s)"
 
-    def _fail(self, what: str, tick: int | None, tries: int, t0: float) -> LinkError:
+    def _fail(self, what: str, tries: int, t0: float, garbled: bool = False) -> LinkError:
         where = self._where()
         gone = self._gone()
         if gone:
             head = f"{self.url}: {self.side} gone {where}: {gone}"
         else:
-            head = (f"{self.url}: {self.side} silent {where}: no {what} after {tries} "
+            # silent: the last try met no answer at all; garbled: only broken frames or error reports
+            how = "garbled" if garbled else "silent"
+            head = (f"{self.url}: {self.side} {how} {where}: no {what} after {tries} "
                     f"{'try' if tries == 1 else 'tries'} in {time.monotonic() - t0:.2f} s")
         return LinkError(f"{head}; {self.counters}")
 
-    def _transact(self, msg: bytes, want: MsgType, seq: int | None, tick: int | None, timeout_s: float,
-                  retries: int, budget_s: float = float("inf")) -> bytes:
-        """Send msg until an answer of type `want` (for `seq`) comes, at most retries + 1 times,
-        and within budget_s in all."""
+    def _transact(self, msg: bytes, want: MsgType, seq: int | None, timeout_s: float, retries: int,
+                  budget_s: float) -> bytes:
+        """Send msg until an answer of type `want` (for `seq`) comes: at most retries + 1 times,
+        within budget_s in all."""
         t0 = time.monotonic()
-        tries = 0
+        tries = silent = 0
         while True:
             self._send_msg(msg)
             self.counters.sent += 1
             tries += 1
-            # each try waits twice as long as the one before: a lost frame costs one short
-            # timeout, while a host or board stalled by a busy machine still gets its time
-            deadline = min(time.monotonic() + timeout_s * (1 << min(tries - 1, 6)), t0 + budget_s)
+            # a try that met silence waits twice as long next time (a lost frame costs one short
+            # timeout; a host or board stalled by a busy machine still gets its time); a garbled
+            # answer or an error report is answered by sending again at once
+            deadline = min(time.monotonic() + timeout_s * (1 << min(silent, 4)), t0 + budget_s)
+            heard = False
             while True:
                 left = deadline - time.monotonic()
                 if left <= 0:
@@ -117,7 +124,8 @@ class WireLink(FirmwareLink):
                     if exc.status in (Status.CRC, Status.COBS, Status.SHORT, Status.LONG, Status.SEGMENT,
                                       Status.LENGTH):
                         self.counters.crc_errors += 1
-                    break  # garbled: the answer is lost, ask again now rather than at the timeout
+                    heard = True
+                    break
                 if reply is None:
                     break
                 self.counters.received += 1
@@ -128,16 +136,18 @@ class WireLink(FirmwareLink):
                     self.counters.stale += 1  # an answer to an earlier try or tick
                     continue
                 if t == MsgType.ERROR:
-                    if self._board_error(reply, seq, tick):
+                    if self._board_error(reply, seq):
+                        heard = True
                         break
                     continue
                 self.counters.stale += 1
+            silent += 0 if heard else 1
             gone = self._gone()
             if gone or tries > retries or time.monotonic() >= t0 + budget_s:
-                raise self._fail(want.name, tick, tries, t0)
+                raise self._fail(want.name, tries, t0, garbled=heard)
             self.counters.retries += 1
 
-    def _board_error(self, reply: bytes, seq: int | None, tick: int | None) -> bool:
+    def _board_error(self, reply: bytes, seq: int | None) -> bool:
         """An error report: True to send again now; raises on errors that retrying cannot fix."""
         _, rec = codec.decode_msg(reply)
         code = ErrCode(int(rec["code"])) if int(rec["code"]) in ErrCode._value2member_map_ else None
@@ -158,7 +168,7 @@ class WireLink(FirmwareLink):
     def handshake(self) -> np.ndarray:
         hello = codec.encode_msg(MsgType.HELLO, codec.record(MsgType.HELLO, proto=codec.PROTO_VERSION,
                                                              watchdog_ms=self.opts.watchdog_ms))
-        reply = self._transact(hello, MsgType.INFO, None, None, _HANDSHAKE_TRY_S, self.opts.retries,
+        reply = self._transact(hello, MsgType.INFO, None, _HANDSHAKE_TRY_S, _HANDSHAKE_RETRIES,
                                self.opts.handshake_timeout_s)
         _, info = codec.decode_msg(reply)
         ver = int(info["fw_version"])
@@ -182,7 +192,7 @@ class WireLink(FirmwareLink):
         if self.info is None:
             self.handshake()
         msg = codec.encode_msg(MsgType.RESET, config)
-        reply = self._transact(msg, MsgType.READY, None, None, _HANDSHAKE_TRY_S, self.opts.retries,
+        reply = self._transact(msg, MsgType.READY, None, _HANDSHAKE_TRY_S, _HANDSHAKE_RETRIES,
                                self.opts.handshake_timeout_s)
         _, ready = codec.decode_msg(reply)
         if int(ready["config_crc"]) != crc16(msg[1:]):
@@ -198,7 +208,8 @@ class WireLink(FirmwareLink):
         seq = int(inputs["seq"])
         self._t_ms = int(inputs["t_ms"])
         self._tick = seq
-        reply = self._transact(msg, MsgType.OUTPUTS, seq, seq, self.opts.timeout_s, self.opts.retries)
+        reply = self._transact(msg, MsgType.OUTPUTS, seq, self.opts.timeout_s, self.opts.retries,
+                               self.opts.step_budget_s)
         if len(reply) != 1 + outputs.dtype.itemsize:
             raise LinkError(f"{self.url}: OUTPUTS of {len(reply) - 1} bytes at tick {seq}; {self.counters}")
         _, rec = codec.decode_msg(reply)

@@ -111,6 +111,10 @@ int ffr_can_rx_push(ffr_can_rx_t *r, uint32_t id, const uint8_t *data, uint8_t d
         r->have = 0;
         r->next = 0;
         r->buf[0] = type;
+    } else if (r->type == 0u) {
+        return 0; /* the rest of a message already given up on (or begun before we listened): once is enough */
+    } else if (r->type == type && seg + 1u == r->next) {
+        return 0; /* the segment just taken, again: CAN's double reception when an ACK was lost */
     } else if (r->type != type || r->next != seg) {
         ffr_can_rx_init(r);
         return FFR_E_SEGMENT;

@@ -182,7 +182,9 @@ void ffr_can_rx_init(ffr_can_rx_t *r);
 size_t ffr_can_rx_sizeof(void); /* for hosts that allocate it from outside C */
 /* Push one received CAN frame. Returns 1 when a message is complete and its
  * CRC holds (msg/msg_len = type + body), 0 when more segments are needed,
- * FFR_E_SEGMENT/LENGTH/CRC on a bad frame (the partial message is dropped). */
+ * FFR_E_SEGMENT/LENGTH/CRC on a bad frame (the partial message is dropped).
+ * Later segments of a dropped message are ignored (0), so one loss gives one
+ * error report, not one per remaining segment. */
 int ffr_can_rx_push(ffr_can_rx_t *r, uint32_t id, const uint8_t *data, uint8_t dlen, uint8_t *msg, size_t cap,
                     size_t *msg_len);
 

@@ -174,12 +174,23 @@ static void test_can(void)
         CHECK(r == 1 && ol == n && memcmp(out, msg, n) == 0);
         CHECK(!fd || dlen == 48u); /* 34 bytes padded to the next FD length */
     }
+    /* a segment received twice (a lost ACK): taken once */
+    ffr_can_rx_init(&rx);
+    for (k = 0; ffr_can_frame(msg, n, 0, k, &id, data, &dlen) == 1; ++k) {
+        r = ffr_can_rx_push(&rx, id, data, dlen, out, sizeof(out), &ol);
+        if (k == 1u) {
+            CHECK(r == 0 && ffr_can_rx_push(&rx, id, data, dlen, out, sizeof(out), &ol) == 0);
+        }
+    }
+    CHECK(r == 1 && ol == n && memcmp(out, msg, n) == 0);
     /* a lost segment: the partial message is dropped, the next one is whole */
     ffr_can_rx_init(&rx);
     CHECK(ffr_can_frame(msg, n, 0, 0, &id, data, &dlen) == 1);
     CHECK(ffr_can_rx_push(&rx, id, data, dlen, out, sizeof(out), &ol) == 0);
     CHECK(ffr_can_frame(msg, n, 0, 2, &id, data, &dlen) == 1);
     CHECK(ffr_can_rx_push(&rx, id, data, dlen, out, sizeof(out), &ol) == FFR_E_SEGMENT);
+    CHECK(ffr_can_frame(msg, n, 0, 3, &id, data, &dlen) == 1); /* the rest of it: ignored, once is enough */
+    CHECK(ffr_can_rx_push(&rx, id, data, dlen, out, sizeof(out), &ol) == 0);
     /* a flipped bit: the CRC catches it */
     ffr_can_rx_init(&rx);
     for (k = 0; ffr_can_frame(msg, n, 0, k, &id, data, &dlen) == 1; ++k) {
