@@ -90,7 +90,7 @@ class HostBoardCanLink(CanLink):
         self._board_bus = board_bus
         super().__init__(bus, opts)
 
-    def _gone(self) -> str | None:
+    def _gone(self, wait_s: float = 0.0) -> str | None:
         return self.board.gone()
 
     def close(self) -> None:

@@ -81,8 +81,11 @@ class BoardProcess:
     def pid(self) -> int:
         return self.proc.pid
 
-    def gone(self) -> str | None:
+    def gone(self, wait_s: float = 0.0) -> str | None:
         rc = self.proc.poll()
+        if rc is None and wait_s > 0:
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                rc = self.proc.wait(timeout=wait_s)
         if rc is None:
             return None
         if rc < 0:
@@ -131,8 +134,8 @@ class HostBoardSerialLink(SerialLink):
         self.board = board
         super().__init__(port_url, opts)
 
-    def _gone(self) -> str | None:
-        return self.board.gone()
+    def _gone(self, wait_s: float = 0.0) -> str | None:
+        return self.board.gone(wait_s)
 
     def close(self) -> None:
         try:

@@ -49,7 +49,7 @@ class SerialLink(WireLink):
             self.ser.write(frame)
         except (serial.SerialException, OSError) as exc:
             raise LinkError(f"{self.url}: {self.side} gone {self._where()}: "
-                            f"{self._gone() or f'write failed ({exc})'}; {self.counters}") from None
+                            f"{self._gone(0.5) or f'write failed ({exc})'}; {self.counters}") from None
 
     def _send_msg(self, msg: bytes) -> None:
         for f in self.faults_tx.due():
@@ -63,7 +63,7 @@ class SerialLink(WireLink):
             n = self.ser.in_waiting
             data = self.ser.read(n if n > 0 else 1)
         except (serial.SerialException, OSError) as exc:
-            gone = self._gone()
+            gone = self._gone(0.5)
             raise LinkError(f"{self.url}: {self.side} gone {self._where()}: "
                             f"{gone or f'the line closed ({exc})'}; {self.counters}") from None
         if data:

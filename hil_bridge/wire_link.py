@@ -79,8 +79,9 @@ class WireLink(FirmwareLink):
         """One message (type + body) within timeout_s, None on timeout; DecodeError for a bad frame;
         LinkError when the transport is gone."""
 
-    def _gone(self) -> str | None:
-        """Why the other side can no longer answer (its process ended, ...), None if it may."""
+    def _gone(self, wait_s: float = 0.0) -> str | None:
+        """Why the other side can no longer answer (its process ended, ...), None if it may;
+        wait_s: how long to wait for that to show (the line closes before a process is reaped)."""
         return None
 
     # ---- protocol -------------------------------------------------------------------------------------------
