@@ -9,6 +9,7 @@ is the codec and firmware a CAN microcontroller would run.
 
 from __future__ import annotations
 
+import itertools
 import threading
 import time
 
@@ -101,13 +102,11 @@ class HostBoardCanLink(CanLink):
             self._board_bus.shutdown()
 
 
-_count = 0
+_channels = itertools.count()
 
 
 def open_host_board_can(opts: WireOptions) -> HostBoardCanLink:
-    global _count
-    _count += 1
-    channel = f"ffr-host-board-{id(opts):x}-{_count}"  # a private virtual bus per link
+    channel = f"ffr-host-board-{next(_channels)}"  # a private virtual bus per link (virtual is per process)
     board_bus = can.Bus(interface="virtual", channel=channel)
     board = CanBoard(board_bus, fd=opts.fd, watchdog_ms=opts.watchdog_ms or 500)
     board.start()

@@ -100,7 +100,7 @@ def _same_bytes(native: np.dtype, wire: np.dtype) -> bool:
     return True
 
 
-_RAW_OK = {t: _same_bytes(d, BODY_WIRE[t]) for t, d in NATIVE.items()}
+RAW_OK = {t: _same_bytes(d, BODY_WIRE[t]) for t, d in NATIVE.items()}
 
 
 def body_size(t: int) -> int:
@@ -116,7 +116,7 @@ def wire_size(struct_id: int) -> int:
 def encode_msg(t: MsgType, rec: np.ndarray) -> bytes:
     """Type byte + body from a record of the body's wire dtype (or the native struct dtype)."""
     wire = BODY_WIRE[t]
-    if rec.dtype == wire or _RAW_OK.get(t, False) and rec.dtype == NATIVE[t]:
+    if rec.dtype == wire or RAW_OK.get(t, False) and rec.dtype == NATIVE[t]:
         return bytes((int(t),)) + rec.tobytes()
     if t in NATIVE and rec.dtype == NATIVE[t]:
         return bytes((int(t),)) + np.asarray(rec).astype(wire).tobytes()  # field by field, by position
@@ -136,7 +136,7 @@ def decode_msg(msg: bytes) -> tuple[MsgType, np.ndarray]:
     rec = np.frombuffer(msg, dtype=wire, count=1, offset=1).reshape(())
     if t in NATIVE:
         native = NATIVE[t]
-        rec = rec.copy().view(native) if _RAW_OK[t] else rec.astype(native)
+        rec = rec.copy().view(native) if RAW_OK[t] else rec.astype(native)
     return t, rec.copy()
 
 

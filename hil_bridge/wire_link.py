@@ -65,7 +65,7 @@ class WireLink(FirmwareLink):
         self.info: np.ndarray | None = None
         self._in_msg = bytearray(1 + INPUTS_DTYPE.itemsize)
         self._in_msg[0] = int(MsgType.INPUTS)
-        self._raw_inputs = codec._RAW_OK[MsgType.INPUTS]
+        self._raw_inputs = codec.RAW_OK[MsgType.INPUTS]
         self._t_ms = 0
         self._tick: int | None = None  # None: handshake or reset
 
