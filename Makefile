@@ -17,13 +17,20 @@ ARM_SIZE ?= arm-none-eabi-size
 FW_SRCS := $(sort $(wildcard firmware/src/*.c))
 FW_HDRS := $(wildcard firmware/include/*.h firmware/src/*.h)
 FW_TESTS := $(sort $(wildcard firmware/tests/*.c))
+# The wire (docs/protocol.md): codec and board link, shared by every board.
+WIRE_SRCS := $(sort $(wildcard firmware/codec/*.c firmware/link/*.c))
+WIRE_TESTS := $(sort $(wildcard firmware/tests/wire/*.c))
+HOST_BOARD_SRCS := $(sort $(wildcard firmware/boards/host/*.c))
+WIRE_VECTORS := tests/bridge/vectors/wire_vectors.txt
+FUZZ_SECONDS ?= 60
+CLANG ?= clang
 CSTD    := -std=c99 -Wall -Wextra -Werror -pedantic -Wshadow -Wconversion -Wdouble-promotion \
            -ffp-contract=off -fno-common -Ifirmware/include -Ifirmware/src
 HOST_CFLAGS := $(CSTD) -O2 -fPIC
 ARM_CFLAGS  := $(CSTD) -Os -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 \
                -ffunction-sections -fdata-sections
 
-.PHONY: all setup run test bench firmware firmware-host firmware-arm firmware-boards firmware-test selftest lint clean
+.PHONY: all setup run test bench firmware firmware-host firmware-arm firmware-boards firmware-test selftest lint clean wire-test fuzz
 
 all: firmware-host
 
@@ -35,16 +42,40 @@ $(VENV)/.stamp: pyproject.toml
 setup: $(VENV)/.stamp
 
 # ---- firmware --------------------------------------------------------------
-$(BUILD)/host/libffr.so: $(FW_SRCS) $(FW_HDRS) Makefile
+$(BUILD)/host/libffr.so: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) Makefile
 	@mkdir -p $(dir $@)
-	$(CC) $(HOST_CFLAGS) -shared -o $@ $(FW_SRCS)
+	$(CC) $(HOST_CFLAGS) -shared -o $@ $(FW_SRCS) $(WIRE_SRCS)
 
 $(BUILD)/host/ffr_unit_tests: $(FW_SRCS) $(FW_TESTS) $(FW_HDRS) firmware/tests/unit.h Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(CSTD) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -Ifirmware/tests \
 		-o $@ $(FW_SRCS) $(FW_TESTS) -lm
 
-firmware-host: $(BUILD)/host/libffr.so
+firmware-host: $(BUILD)/host/libffr.so $(BUILD)/host/ffr-host-board
+
+# The host board: the firmware, the codec and a POSIX transport (pty, TCP, stdio).
+$(BUILD)/host/ffr-host-board: $(FW_SRCS) $(WIRE_SRCS) $(HOST_BOARD_SRCS) $(FW_HDRS) firmware/boards/host/transport.h Makefile
+	@mkdir -p $(dir $@)
+	$(CC) $(CSTD) -O2 -Ifirmware/boards/host -o $@ $(FW_SRCS) $(WIRE_SRCS) $(HOST_BOARD_SRCS)
+
+$(BUILD)/host/ffr_wire_tests: $(FW_SRCS) $(WIRE_SRCS) $(WIRE_TESTS) $(FW_HDRS) firmware/tests/unit.h Makefile
+	@mkdir -p $(dir $@)
+	$(CC) $(CSTD) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -Ifirmware/tests \
+		-Ifirmware/tests/wire -o $@ $(FW_SRCS) $(WIRE_SRCS) $(WIRE_TESTS) -lm
+
+wire-test: $(BUILD)/host/ffr_wire_tests
+	$(BUILD)/host/ffr_wire_tests $(WIRE_VECTORS)
+
+# libFuzzer with ASan+UBSan on the board's whole receive path; FUZZ_SECONDS bounds it.
+$(BUILD)/fuzz/ffr_fuzz_rx: $(FW_SRCS) $(WIRE_SRCS) firmware/tests/fuzz/fuzz_rx.c $(FW_HDRS) Makefile
+	@mkdir -p $(dir $@)
+	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+		-Ifirmware/include -Ifirmware/src -o $@ $(FW_SRCS) $(WIRE_SRCS) firmware/tests/fuzz/fuzz_rx.c
+
+fuzz: $(BUILD)/fuzz/ffr_fuzz_rx
+	@mkdir -p $(BUILD)/fuzz/corpus
+	$(BUILD)/fuzz/ffr_fuzz_rx -max_total_time=$(FUZZ_SECONDS) -max_len=2048 -print_final_stats=1 \
+		$(BUILD)/fuzz/corpus firmware/tests/fuzz/seeds
 
 firmware-test: $(BUILD)/host/ffr_unit_tests
 	$(BUILD)/host/ffr_unit_tests
@@ -56,8 +87,15 @@ $(BUILD)/arm/ffr_size_probe.elf: $(FW_SRCS) $(FW_HDRS) firmware/boards/size_prob
 	$(ARM_CC) $(ARM_CFLAGS) -Wl,--gc-sections --specs=nano.specs --specs=nosys.specs \
 		-o $@ $(FW_SRCS) firmware/boards/size_probe/main.c
 
-firmware-arm: $(BUILD)/arm/ffr_size_probe.elf
+# The same with the wire: the board link and codec behind a byte-stream UART.
+$(BUILD)/arm/ffr_wire_probe.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) firmware/boards/size_probe_wire/main.c Makefile
+	@mkdir -p $(dir $@)
+	$(ARM_CC) $(ARM_CFLAGS) -Wl,--gc-sections --specs=nano.specs --specs=nosys.specs \
+		-o $@ $(FW_SRCS) $(WIRE_SRCS) firmware/boards/size_probe_wire/main.c
+
+firmware-arm: $(BUILD)/arm/ffr_size_probe.elf $(BUILD)/arm/ffr_wire_probe.elf
 	@$(ARM_SIZE) $< | awk 'NR==2 { printf "cortex-m4: flash %d bytes (text %d + data %d), RAM %d bytes (data %d + bss %d)\n", $$1+$$2, $$1, $$2, $$2+$$3, $$2, $$3 }'
+	@$(ARM_SIZE) $(BUILD)/arm/ffr_wire_probe.elf | awk 'NR==2 { printf "cortex-m4 with the wire board link: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
 
 firmware: firmware-host firmware-arm firmware-boards
 
@@ -89,9 +127,10 @@ selftest: firmware-boards
 lint: setup
 	$(VENV)/bin/ruff check .
 
-test: setup firmware-host $(BUILD)/host/ffr_unit_tests
+test: setup firmware-host $(BUILD)/host/ffr_unit_tests $(BUILD)/host/ffr_wire_tests
 	$(VENV)/bin/ruff check .
 	$(BUILD)/host/ffr_unit_tests
+	$(BUILD)/host/ffr_wire_tests $(WIRE_VECTORS)
 	$(VENV)/bin/pytest -q
 
 run: setup firmware-host

@@ -78,8 +78,11 @@ def bench_parts(n: int = 20000) -> None:
 
 
 def main() -> None:
+    from hil_bridge.bench import bench_links
+
     bench_missions()
     bench_parts()
+    bench_links()
 
 
 if __name__ == "__main__":

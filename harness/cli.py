@@ -194,7 +194,7 @@ def table1_text(results: Sequence[Any]) -> str:
 
 
 def _execute(args: argparse.Namespace) -> int:
-    from harness.links import open_link
+    from harness.links import LinkError, open_link
     from harness.loop import run_mission
 
     if args.command == "table1":
@@ -209,6 +209,8 @@ def _execute(args: argparse.Namespace) -> int:
     try:
         for scn in scenarios:
             res, trace = run_mission(scn, link, record=bool(args.plot or replays))
+            if res.outcome == "error" and res.detail.startswith(f"{link.url}:"):
+                raise LinkError(res.detail)  # the link failed, not the mission: exit 2, one line
             missions.append((scn, trace, res))
     finally:
         link.close()

@@ -83,6 +83,7 @@ def open_link(url: str) -> FirmwareLink:
 def _load_builtin() -> None:
     # Imported lazily: a transport's dependencies load only when it is used.
     from harness.links import ctypes_link  # noqa: F401
+    from hil_bridge import links  # noqa: F401  serial:, can:, host-board:
 
 
 def new_inputs() -> np.ndarray:

@@ -1,0 +1,68 @@
+"""Link URL options: ``scheme:target#key=value&key=value``.
+
+Everything after ``#`` configures our side of the link (timeouts, retries,
+faults, CAN FD); the rest of the URL goes to pyserial or python-can untouched,
+so any of their URLs keeps working.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields
+
+from harness.links.base import LinkError
+from hil_bridge.faults import FaultSpec
+
+
+@dataclass
+class WireOptions:
+    timeout_s: float = 0.02          # first wait for an answer; after each silence twice as long
+    retries: int = 10                # send an inputs frame again at most this often ...
+    step_budget_s: float = 1.5       # ... and within this time, then give up
+    handshake_timeout_s: float = 2.0  # wait for INFO, and for READY, at most this long in all
+    watchdog_ms: int = 0             # asked of the board in HELLO (0: the board's own)
+    baud: int = 115200               # serial: real ports only
+    fd: bool = False                 # CAN FD: 64-byte segments
+    bitrate: int = 0                 # CAN: passed to python-can when set
+    step_delay_us: int = 0           # host board: answer this much later (a slow board)
+    transport: str = "pty"           # host-board:serial: pty or tcp
+    log: str = ""                    # host board: its stderr to this file
+    faults: FaultSpec = field(default_factory=FaultSpec)
+
+
+_BOOL = {"1": True, "true": True, "yes": True, "0": False, "false": False, "no": False}
+
+
+def parse_url(url: str) -> tuple[str, WireOptions]:
+    """'serial:loop://#timeout_s=0.1&drop=0.01' -> ('loop://', options)."""
+    rest = url.partition(":")[2]
+    target, _, frag = rest.partition("#")
+    opts = WireOptions()
+    fault_kw: dict[str, float | int] = {}
+    known = {f.name: f for f in fields(WireOptions) if f.name != "faults"}
+    for item in filter(None, frag.split("&")):
+        key, eq, raw = item.partition("=")
+        if not eq:
+            raise LinkError(f"--link = {url!r}: option {item!r}: expected key=value")
+        try:
+            if key in FaultSpec.names():
+                fault_kw[key] = int(raw) if key == "seed" else float(raw)
+            elif key in known:
+                kind = type(getattr(opts, key))
+                if kind is bool:
+                    if raw.lower() not in _BOOL:
+                        raise ValueError
+                    setattr(opts, key, _BOOL[raw.lower()])
+                else:
+                    setattr(opts, key, kind(raw))
+            else:
+                raise LinkError(f"--link = {url!r}: unknown option '{key}', known: "
+                                f"{sorted(set(known) | FaultSpec.names())}")
+        except ValueError:
+            raise LinkError(f"--link = {url!r}: option {key} = {raw!r}: not a valid value") from None
+    try:
+        opts.faults = FaultSpec(**fault_kw)  # type: ignore[arg-type]
+    except ValueError as exc:
+        raise LinkError(f"--link = {url!r}: {exc}") from None
+    if opts.timeout_s <= 0 or opts.retries < 0 or opts.handshake_timeout_s <= 0 or opts.step_budget_s <= 0:
+        raise LinkError(f"--link = {url!r}: timeouts must be > 0 and retries >= 0")
+    return target, opts

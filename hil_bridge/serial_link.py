@@ -1,0 +1,107 @@
+"""The firmware link over serial: any pyserial URL (a port, ``socket://``, a pty).
+
+Frames are COBS with a CRC-16 and a zero delimiter (docs/protocol.md). The
+port's read timeout stays fixed and short (changing it reconfigures the port
+on every call); the link keeps its own deadlines on top.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import socket
+import time
+from dataclasses import replace
+
+import serial
+
+from harness.links.base import LinkError
+from hil_bridge import codec
+from hil_bridge.errors import DecodeError
+from hil_bridge.faults import FaultInjector, flip_bit
+from hil_bridge.options import WireOptions, parse_url
+from hil_bridge.wire_link import WireLink
+
+_POLL_S = 0.002  # the port's read timeout: how often a wait looks at its deadline
+
+
+class SerialLink(WireLink):
+    def __init__(self, port_url: str, opts: WireOptions) -> None:
+        super().__init__(opts)
+        self.port_url = port_url
+        self.ser: serial.SerialBase | None = None
+        self._deframer = codec.Deframer()
+        self._pending: list[bytes | DecodeError] = []
+        self.faults_tx: FaultInjector[bytes] = FaultInjector(opts.faults, flip_bit)
+        # the way back draws from its own stream, so each direction's pattern is fixed by the seed
+        self.faults_rx: FaultInjector[bytes] = FaultInjector(replace(opts.faults, seed=opts.faults.seed + 1), flip_bit)
+        try:
+            self.ser = serial.serial_for_url(port_url, baudrate=opts.baud, timeout=_POLL_S, write_timeout=1.0)
+        except (serial.SerialException, ValueError, OSError) as exc:
+            raise LinkError(f"serial:{port_url}: cannot open: {exc}") from None
+        sock = getattr(self.ser, "_socket", None)  # socket://: one frame, one segment, no Nagle delay
+        if sock is not None:
+            with contextlib.suppress(OSError):
+                sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+
+    def _write(self, frame: bytes) -> None:
+        assert self.ser is not None
+        try:
+            self.ser.write(frame)
+        except (serial.SerialException, OSError) as exc:
+            raise LinkError(f"{self.url}: {self.side} gone {self._where()}: "
+                            f"{self._gone(0.5) or f'write failed ({exc})'}; {self.counters}") from None
+
+    def _send_msg(self, msg: bytes) -> None:
+        for f in self.faults_tx.due():
+            self._write(f)
+        for f in self.faults_tx.filter(codec.frame_encode(msg)):
+            self._write(f)
+
+    def _read_frames(self) -> None:
+        assert self.ser is not None
+        try:
+            n = self.ser.in_waiting
+            data = self.ser.read(n if n > 0 else 1)
+        except (serial.SerialException, OSError) as exc:
+            gone = self._gone(0.5)
+            raise LinkError(f"{self.url}: {self.side} gone {self._where()}: "
+                            f"{gone or f'the line closed ({exc})'}; {self.counters}") from None
+        if data:
+            for item in self._deframer.push(data):
+                if isinstance(item, DecodeError):
+                    self._pending.append(item)
+                    continue
+                # faults on the way in: a whole frame lost, garbled or late (delimiter kept)
+                self._pending.extend(f[:-1] for f in self.faults_rx.filter(item + b"\x00"))
+        self._pending.extend(f[:-1] for f in self.faults_rx.due())
+
+    def _recv_msg(self, timeout_s: float) -> bytes | None:
+        deadline = time.monotonic() + timeout_s
+        while True:
+            if self._pending:
+                item = self._pending.pop(0)
+                if isinstance(item, DecodeError):
+                    raise item
+                return codec.frame_decode(item)
+            if self.faults_tx.holding:
+                for f in self.faults_tx.due():
+                    self._write(f)
+            if time.monotonic() >= deadline:
+                return None
+            self._read_frames()
+
+    def close(self) -> None:
+        if self.ser is not None:
+            with contextlib.suppress(serial.SerialException, OSError):
+                self.ser.close()
+            self.ser = None
+
+
+def open_serial(url: str) -> SerialLink:
+    target, opts = parse_url(url)
+    if not target:
+        raise LinkError(f"--link = {url!r}: expected serial:<pyserial URL>, e.g. serial:/dev/ttyACM0 or "
+                        "serial:socket://127.0.0.1:5000")
+    link = SerialLink(target, opts)
+    link.url = url
+    return link

@@ -1,0 +1,218 @@
+"""The host side of the link protocol (docs/protocol.md), whatever the wire.
+
+``WireLink`` implements the harness's ``FirmwareLink`` once: handshake
+(protocol, firmware version, layout hash), reset with the configuration, and
+lockstep steps with a timeout on every wait and bounded retries. A transport
+(serial, CAN) only moves messages: ``_send_msg`` and ``_recv_msg``.
+
+Every failure is a ``LinkError`` with one line that names the silent side,
+the tick and the counters, e.g.
+``host-board:serial: board silent at tick 412 (t 4.12 s): no OUTPUTS after 6 tries in 0.30 s;
+sent 830, received 824, CRC errors 1, retries 5``.
+"""
+
+from __future__ import annotations
+
+import time
+from abc import abstractmethod
+from dataclasses import dataclass
+
+import numpy as np
+
+from harness.firmware_abi import INPUTS_DTYPE
+from harness.links.base import FirmwareLink, LinkError
+from hil_bridge import codec
+from hil_bridge.codec import MsgType
+from hil_bridge.crc import crc16
+from hil_bridge.errors import DecodeError, ErrCode, Status
+from hil_bridge.options import WireOptions
+
+FW_VERSION_MAJOR = 1  # the firmware API this harness speaks (FFR_VERSION_MAJOR)
+_HANDSHAKE_TRY_S = 0.05  # first wait for INFO / READY (a config is 650 bytes: 60 ms at 115200 baud)
+# A RESET is 82 classic CAN frames: where 2% of frames are lost, one in five gets through whole,
+# so HELLO and RESET may be sent many times; handshake_timeout_s still bounds the wait.
+_HANDSHAKE_RETRIES = 50
+
+
+@dataclass
+class LinkCounters:
+    sent: int = 0          # messages sent (retries included)
+    received: int = 0      # messages received and decoded
+    crc_errors: int = 0    # frames that failed their CRC or framing, either side
+    retries: int = 0       # messages sent again
+    stale: int = 0         # late or repeated answers, ignored
+    board_errors: int = 0  # error reports from the board
+    watchdog: int = 0      # the board's watchdog tripped
+
+    def __str__(self) -> str:
+        return (f"sent {self.sent}, received {self.received}, CRC errors {self.crc_errors}, "
+                f"retries {self.retries}")
+
+
+# Board error reports that mean "send it again" rather than "give up".
+_TRANSIENT = {ErrCode.CRC, ErrCode.FRAMING, ErrCode.SEGMENT, ErrCode.LENGTH}
+
+
+class WireLink(FirmwareLink):
+    """FirmwareLink over a message transport; subclasses move the bytes."""
+
+    side = "board"
+
+    def __init__(self, opts: WireOptions) -> None:
+        super().__init__()
+        self.opts = opts
+        self.counters = LinkCounters()
+        self.info: np.ndarray | None = None
+        self._in_msg = bytearray(1 + INPUTS_DTYPE.itemsize)
+        self._in_msg[0] = int(MsgType.INPUTS)
+        self._raw_inputs = codec.RAW_OK[MsgType.INPUTS]
+        self._t_ms = 0
+        self._tick: int | None = None  # None: handshake or reset
+
+    # ---- transport ------------------------------------------------------------------------------------------
+    @abstractmethod
+    def _send_msg(self, msg: bytes) -> None:
+        """Send one message (type + body)."""
+
+    @abstractmethod
+    def _recv_msg(self, timeout_s: float) -> bytes | None:
+        """One message (type + body) within timeout_s, None on timeout; DecodeError for a bad frame;
+        LinkError when the transport is gone."""
+
+    def _gone(self, wait_s: float = 0.0) -> str | None:
+        """Why the other side can no longer answer (its process ended, ...), None if it may;
+        wait_s: how long to wait for that to show (the line closes before a process is reaped)."""
+        return None
+
+    # ---- protocol -------------------------------------------------------------------------------------------
+    def _where(self) -> str:
+        return "during the handshake" if self._tick is None else f"at tick {self._tick} (t {self._t_ms / 1000:.2f} s)"
+
+    def _fail(self, what: str, tries: int, t0: float, garbled: bool = False) -> LinkError:
+        where = self._where()
+        gone = self._gone()
+        if gone:
+            head = f"{self.url}: {self.side} gone {where}: {gone}"
+        else:
+            # silent: the last try met no answer at all; garbled: only broken frames or error reports
+            how = "garbled" if garbled else "silent"
+            head = (f"{self.url}: {self.side} {how} {where}: no {what} after {tries} "
+                    f"{'try' if tries == 1 else 'tries'} in {time.monotonic() - t0:.2f} s")
+        return LinkError(f"{head}; {self.counters}")
+
+    def _transact(self, msg: bytes, want: MsgType, seq: int | None, timeout_s: float, retries: int,
+                  budget_s: float) -> bytes:
+        """Send msg until an answer of type `want` (for `seq`) comes: at most retries + 1 times,
+        within budget_s in all."""
+        t0 = time.monotonic()
+        tries = silent = 0
+        while True:
+            self._send_msg(msg)
+            self.counters.sent += 1
+            tries += 1
+            # a try that met silence waits twice as long next time (a lost frame costs one short
+            # timeout; a host or board stalled by a busy machine still gets its time); a garbled
+            # answer or an error report is answered by sending again at once
+            deadline = min(time.monotonic() + timeout_s * (1 << min(silent, 4)), t0 + budget_s)
+            heard = False
+            while True:
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    break
+                try:
+                    reply = self._recv_msg(left)
+                except DecodeError as exc:
+                    if exc.status in (Status.CRC, Status.COBS, Status.SHORT, Status.LONG, Status.SEGMENT,
+                                      Status.LENGTH):
+                        self.counters.crc_errors += 1
+                    heard = True
+                    break
+                if reply is None:
+                    break
+                self.counters.received += 1
+                t = reply[0]
+                if t == want:
+                    if seq is None or int.from_bytes(reply[1:5], "little") == seq:
+                        return reply
+                    self.counters.stale += 1  # an answer to an earlier try or tick
+                    continue
+                if t == MsgType.ERROR:
+                    if self._board_error(reply, seq):
+                        heard = True
+                        break
+                    continue
+                self.counters.stale += 1
+            silent += 0 if heard else 1
+            gone = self._gone()
+            if gone or tries > retries or time.monotonic() >= t0 + budget_s:
+                raise self._fail(want.name, tries, t0, garbled=heard)
+            self.counters.retries += 1
+
+    def _board_error(self, reply: bytes, seq: int | None) -> bool:
+        """An error report: True to send again now; raises on errors that retrying cannot fix."""
+        _, rec = codec.decode_msg(reply)
+        code = ErrCode(int(rec["code"])) if int(rec["code"]) in ErrCode._value2member_map_ else None
+        self.counters.board_errors += 1
+        if code == ErrCode.WATCHDOG:
+            self.counters.watchdog += 1
+            return False
+        if code in _TRANSIENT:
+            return True
+        if seq is not None and int(rec["seq"]) != seq:
+            self.counters.stale += 1  # about an old, late frame of ours
+            return False
+        where = self._where()
+        name = code.name if code is not None else f"code {int(rec['code'])}"
+        raise LinkError(f"{self.url}: {self.side} reported {name} (detail {int(rec['detail'])}, "
+                        f"seq {int(rec['seq'])}) {where}; {self.counters}")
+
+    def handshake(self) -> np.ndarray:
+        hello = codec.encode_msg(MsgType.HELLO, codec.record(MsgType.HELLO, proto=codec.PROTO_VERSION,
+                                                             watchdog_ms=self.opts.watchdog_ms))
+        reply = self._transact(hello, MsgType.INFO, None, _HANDSHAKE_TRY_S, _HANDSHAKE_RETRIES,
+                               self.opts.handshake_timeout_s)
+        _, info = codec.decode_msg(reply)
+        ver = int(info["fw_version"])
+        major, minor = ver >> 16, ver & 0xFFFF
+        want_hash = codec.layout_hash()
+        sizes = (int(info["inputs_size"]), int(info["outputs_size"]), int(info["config_size"]))
+        want_sizes = tuple(codec.BODY_WIRE[t].itemsize for t in (MsgType.INPUTS, MsgType.OUTPUTS, MsgType.RESET))
+        if int(info["proto"]) != codec.PROTO_VERSION:
+            raise LinkError(f"{self.url}: {self.side} speaks protocol {int(info['proto'])}, "
+                            f"the harness {codec.PROTO_VERSION}: refused")
+        if major != FW_VERSION_MAJOR or int(info["layout_hash"]) != want_hash or sizes != want_sizes:
+            raise LinkError(
+                f"{self.url}: {self.side} firmware {major}.{minor} with layout hash 0x{int(info['layout_hash']):08x} "
+                f"(sizes {sizes}) does not match the harness's {FW_VERSION_MAJOR}.x, 0x{want_hash:08x} "
+                f"{want_sizes}: refused; build the board from this tree")
+        self.info = info
+        return info
+
+    def _reset_impl(self, config: np.ndarray) -> None:
+        self._tick = None
+        if self.info is None:
+            self.handshake()
+        msg = codec.encode_msg(MsgType.RESET, config)
+        reply = self._transact(msg, MsgType.READY, None, _HANDSHAKE_TRY_S, _HANDSHAKE_RETRIES,
+                               self.opts.handshake_timeout_s)
+        _, ready = codec.decode_msg(reply)
+        if int(ready["config_crc"]) != crc16(msg[1:]):
+            raise LinkError(f"{self.url}: {self.side} acknowledged a different configuration "
+                            f"(CRC 0x{int(ready['config_crc']):04x}, sent 0x{crc16(msg[1:]):04x}); {self.counters}")
+
+    def _step_impl(self, inputs: np.ndarray, outputs: np.ndarray) -> None:
+        if self._raw_inputs and inputs.dtype == INPUTS_DTYPE:
+            self._in_msg[1:] = inputs.tobytes()
+            msg = bytes(self._in_msg)
+        else:
+            msg = codec.encode_msg(MsgType.INPUTS, inputs)
+        seq = int(inputs["seq"])
+        self._t_ms = int(inputs["t_ms"])
+        self._tick = seq
+        reply = self._transact(msg, MsgType.OUTPUTS, seq, self.opts.timeout_s, self.opts.retries,
+                               self.opts.step_budget_s)
+        if len(reply) != 1 + outputs.dtype.itemsize:
+            raise LinkError(f"{self.url}: OUTPUTS of {len(reply) - 1} bytes at tick {seq}; {self.counters}")
+        _, rec = codec.decode_msg(reply)
+        outputs[...] = rec
+

@@ -1,0 +1,279 @@
+"""The wire links: handshake and its refusals, clear one-line errors with the
+counters, the board's watchdog, and no process left behind."""
+
+from __future__ import annotations
+
+import re
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Callable, Iterator
+
+import numpy as np
+import pytest
+
+from harness.firmware_config import build_config
+from harness.links import LinkError, open_link
+from harness.links.base import new_inputs, new_outputs
+from harness.loop import run_mission
+from hil_bridge import codec
+from hil_bridge.codec import MsgType
+from hil_bridge.errors import ErrCode
+from hil_bridge.faults import FaultInjector, FaultSpec, flip_bit
+from tests.bridge.conftest import alive, short_scenario
+
+pytestmark = pytest.mark.usefixtures("no_stray_boards")
+
+
+def _config() -> np.ndarray:
+    return build_config(short_scenario().robot)
+
+
+class FakeBoard:
+    """A board on TCP that answers each message as `answer` says (None: stays silent)."""
+
+    def __init__(self, answer: Callable[[bytes], bytes | None]) -> None:
+        self.srv = socket.create_server(("127.0.0.1", 0))
+        self.port = self.srv.getsockname()[1]
+        self.answer = answer
+        self.thread = threading.Thread(target=self._serve, daemon=True)
+        self.thread.start()
+
+    def _serve(self) -> None:
+        conn, _ = self.srv.accept()
+        d = codec.Deframer()
+        with conn:
+            while data := conn.recv(4096):
+                for f in d.push(data):
+                    reply = self.answer(codec.frame_decode(f))  # type: ignore[arg-type]
+                    if reply is not None:
+                        conn.sendall(reply)
+
+    def close(self) -> None:
+        self.srv.close()
+
+
+def _info(**over: int) -> bytes:
+    fields = dict(proto=1, watchdog_ms=500, fw_version=1 << 16, layout_hash=codec.layout_hash(), inputs_size=32,
+                  outputs_size=24, config_size=codec.CONFIG_WIRE.itemsize)
+    fields.update(over)
+    return codec.frame_encode(codec.encode_msg(MsgType.INFO, codec.record(MsgType.INFO, **fields)))
+
+
+@pytest.fixture
+def fake() -> Iterator[Callable[[Callable[[bytes], bytes | None]], FakeBoard]]:
+    boards: list[FakeBoard] = []
+
+    def make(answer: Callable[[bytes], bytes | None]) -> FakeBoard:
+        boards.append(FakeBoard(answer))
+        return boards[-1]
+
+    yield make
+    for b in boards:
+        b.close()
+
+
+@pytest.mark.parametrize("url", ["host-board:serial", "host-board:serial#transport=tcp", "host-board:can",
+                                 "host-board:can#fd=1"])
+def test_handshake_reports_the_boards_firmware(url: str) -> None:
+    with open_link(url) as link:
+        link.reset(_config())
+        info = link.info  # type: ignore[attr-defined]
+        assert int(info["layout_hash"]) == codec.layout_hash()
+        assert int(info["fw_version"]) >> 16 == 1 and int(info["inputs_size"]) == 32
+
+
+def test_a_board_with_another_layout_is_refused(fake) -> None:
+    board = fake(lambda m: _info(layout_hash=0xDEADBEEF) if m[0] == MsgType.HELLO else None)
+    with pytest.raises(LinkError) as exc, open_link(f"serial:socket://127.0.0.1:{board.port}") as link:
+        link.reset(_config())
+    msg = str(exc.value)
+    assert "0xdeadbeef" in msg and f"0x{codec.layout_hash():08x}" in msg and "refused" in msg
+    assert "\n" not in msg
+
+
+def test_a_board_with_another_major_version_is_refused(fake) -> None:
+    board = fake(lambda m: _info(fw_version=2 << 16) if m[0] == MsgType.HELLO else None)
+    with pytest.raises(LinkError, match=r"firmware 2\.0 .* refused"), \
+            open_link(f"serial:socket://127.0.0.1:{board.port}") as link:
+        link.reset(_config())
+
+
+def test_a_silent_board_gives_a_one_line_error_with_counters() -> None:
+    t0 = time.monotonic()
+    with pytest.raises(LinkError) as exc, open_link("serial:loop://#handshake_timeout_s=0.5") as link:
+        link.reset(_config())  # loop:// only echoes: our HELLO comes back, never an INFO
+    msg = str(exc.value)
+    assert time.monotonic() - t0 < 1.5
+    assert msg.startswith("serial:loop://#handshake_timeout_s=0.5: board silent during the handshake: no INFO")
+    assert "sent " in msg and "received " in msg and "CRC errors 0" in msg and "retries " in msg
+
+
+def test_a_board_that_goes_silent_mid_run_is_named_with_the_tick(fake) -> None:
+    def answer(m: bytes) -> bytes | None:
+        t, rec = codec.decode_msg(m)
+        if t == MsgType.HELLO:
+            return _info()
+        if t == MsgType.RESET:
+            from hil_bridge.crc import crc16
+            return codec.frame_encode(codec.encode_msg(MsgType.READY, codec.record(
+                MsgType.READY, config_crc=crc16(m[1:]))))
+        if t == MsgType.INPUTS and int(rec["seq"]) < 5:
+            out = codec.record(MsgType.OUTPUTS, seq=int(rec["seq"]))
+            return codec.frame_encode(codec.encode_msg(MsgType.OUTPUTS, out))
+        return None
+
+    board = fake(answer)
+    with open_link(f"serial:socket://127.0.0.1:{board.port}#timeout_s=0.05&retries=2&step_budget_s=5") as link:
+        link.reset(_config())
+        inp, out = new_inputs(), new_outputs()
+        for k in range(5):
+            inp["seq"], inp["t_ms"] = k, 10 * k
+            link.step(inp, out)
+        inp["seq"], inp["t_ms"] = 5, 50
+        with pytest.raises(LinkError) as exc:
+            link.step(inp, out)
+    msg = str(exc.value)
+    m = re.search(r"board silent at tick 5 \(t 0\.05 s\): no OUTPUTS after 3 tries in (\S+) s; "
+                  r"sent (\d+), received (\d+), CRC errors 0, retries (\d+)$", msg)
+    assert m, msg
+    assert float(m.group(1)) >= 0.35  # 50 + 100 + 200 ms: each silent try waits twice as long
+    sent, received, retries = map(int, m.group(2, 3, 4))
+    assert retries >= 2 and sent == received + 3  # the last three INPUTS went unanswered
+
+
+def test_a_board_answering_garbage_counts_crc_errors(fake) -> None:
+    good = _info()
+    board = fake(lambda m: good[:3] + bytes([good[3] ^ 0x40]) + good[4:])  # one bit off, every time
+    with pytest.raises(LinkError) as exc, \
+            open_link(f"serial:socket://127.0.0.1:{board.port}#handshake_timeout_s=3") as link:
+        link.reset(_config())
+    # a garbled answer is asked again at once: many tries within the budget, each one a CRC error
+    assert "board garbled during the handshake" in str(exc.value)
+    m = re.search(r"no INFO after (\d+) tries .*CRC errors (\d+), retries (\d+)", str(exc.value))
+    assert m and int(m.group(1)) == int(m.group(2)) == int(m.group(3)) + 1 == 51
+
+
+def test_a_board_error_report_that_retrying_cannot_fix_ends_the_run(fake) -> None:
+    err = codec.frame_encode(codec.encode_msg(MsgType.ERROR, codec.record(MsgType.ERROR, code=int(ErrCode.PROTO),
+                                                                           detail=3)))
+    board = fake(lambda m: err)
+    with pytest.raises(LinkError, match="board reported PROTO \\(detail 3"), \
+            open_link(f"serial:socket://127.0.0.1:{board.port}") as link:
+        link.reset(_config())
+
+
+def test_close_ends_the_board_process() -> None:
+    link = open_link("host-board:serial")
+    pid = link.board.pid  # type: ignore[attr-defined]
+    assert alive(pid)
+    link.reset(_config())
+    link.close()
+    assert not alive(pid)
+
+
+def test_the_board_exits_when_its_harness_is_killed() -> None:
+    code = ("import os, signal, sys\n"
+            "from harness.links import open_link\n"
+            "link = open_link('host-board:serial')\n"
+            "print(link.board.pid, flush=True)\n"
+            "os.kill(os.getpid(), signal.SIGKILL)\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert p.returncode == -signal.SIGKILL
+    pid = int(p.stdout.split()[0])
+    deadline = time.monotonic() + 3.0
+    while alive(pid) and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert not alive(pid), "the board outlived its harness"
+
+
+def test_serial_board_watchdog_stops_the_motors_and_says_so() -> None:
+    with open_link("host-board:serial#watchdog_ms=100") as link:
+        res, trace = run_mission(short_scenario(seconds=2.0), link)
+        assert tuple(trace.actuators[-1, :2]) != (0, 0)  # driving when the inputs stop
+        assert int(link.info["watchdog_ms"]) == 100  # type: ignore[attr-defined]
+        time.sleep(0.3)
+        report = link._recv_msg(1.0)  # type: ignore[attr-defined]
+        assert report is not None
+        t, rec = codec.decode_msg(report)
+        assert t == MsgType.ERROR and int(rec["code"]) == ErrCode.WATCHDOG
+        assert int(rec["seq"]) == len(trace.i) - 1
+
+
+def test_can_board_watchdog_stops_motors_and_fans_then_rearms() -> None:
+    with open_link("host-board:can#watchdog_ms=100") as link:
+        board = link.board  # type: ignore[attr-defined]
+        res, trace = run_mission(short_scenario(seconds=2.0), link)
+        pwm_l, pwm_r, fan = board.link.actuators()
+        assert (pwm_l, pwm_r) == tuple(map(int, trace.actuators[-1, :2])) != (0, 0)
+        time.sleep(0.3)
+        assert board.link.actuators() == (0, 0, 0) and board.watchdog_trips == 1
+        # the next inputs re-arm it: a fresh reset and a tick drive the motors from the firmware again
+        link.reset(_config())
+        inp, out = new_inputs(), new_outputs()
+        link.step(inp, out)
+        assert board.link.actuators() == (int(out["pwm"][0]), int(out["pwm"][1]), int(out["fan"]))
+
+
+def test_fault_injection_is_seeded() -> None:
+    spec = FaultSpec(drop=0.1, corrupt=0.1, duplicate=0.05, seed=4)
+    a = FaultInjector(spec, flip_bit)
+    b = FaultInjector(spec, flip_bit)
+    frames = [bytes([k % 250 + 1]) * 8 for k in range(2000)]
+    out_a = [a.filter(f) for f in frames]
+    assert out_a == [b.filter(f) for f in frames]
+    assert 150 < a.counters.dropped < 250 and 130 < a.counters.corrupted < 230
+    assert sum(len(o) == 2 for o in out_a) == a.counters.duplicated > 0
+    other = FaultInjector(FaultSpec(drop=0.1, seed=5), flip_bit)
+    assert [other.filter(f) for f in frames] != out_a
+
+
+def test_delayed_frames_arrive_later() -> None:
+    inj = FaultInjector(FaultSpec(delay=1.0, delay_s=0.05), flip_bit)
+    assert inj.filter(b"x") == [] and inj.holding
+    assert inj.due() == []
+    time.sleep(0.06)
+    assert inj.due() == [b"x"] and not inj.holding
+
+
+@pytest.mark.parametrize(("url", "needle"), [
+    ("host-board:serial#drop=2", "drop = 2.0: expected a fraction"),
+    ("host-board:serial#retries=x", "retries = 'x'"),
+    ("host-board:serial#transport=usb", "transport = 'usb'"),
+    ("serial:", "expected serial:<pyserial URL>"),
+    ("serial:/dev/nonexistent-ffr-port", "cannot open"),
+    ("can:virtual", "expected can:<interface>:<channel>"),
+    ("can:no_such_interface:0", "cannot open CAN interface 'no_such_interface'"),
+])
+def test_bad_link_urls_are_one_line_errors(url: str, needle: str) -> None:
+    with pytest.raises(LinkError) as exc:
+        open_link(url).close()
+    assert needle in str(exc.value) and "\n" not in str(exc.value)
+
+
+def test_host_board_missing_program_is_a_clear_error(monkeypatch, tmp_path) -> None:
+    monkeypatch.setenv("FFR_HOST_BOARD", str(tmp_path / "nope"))
+    with pytest.raises(LinkError, match="make firmware-host"):
+        open_link("host-board:serial")
+
+
+def test_board_program_rejects_bad_arguments() -> None:
+    from hil_bridge.host_board import board_program
+
+    p = subprocess.run([str(board_program()), "--watchdog-ms", "fast"], capture_output=True, text=True, timeout=10)
+    assert p.returncode == 2 and "--watchdog-ms = 'fast'" in p.stderr
+
+
+def test_board_over_stdio_answers_a_hello() -> None:
+    from hil_bridge.host_board import board_program
+
+    hello = codec.frame_encode(codec.encode_msg(MsgType.HELLO, codec.record(MsgType.HELLO, proto=1)))
+    p = subprocess.run([str(board_program()), "--stdio"], input=b"\x00" + hello, capture_output=True, timeout=10)
+    frames = [f for f in p.stdout.split(b"\x00") if f]
+    t, info = codec.decode_msg(codec.frame_decode(frames[0]))
+    assert t == MsgType.INFO and int(info["layout_hash"]) == codec.layout_hash()
+    assert p.returncode == 0 and b"the host closed the line" in p.stderr
+
