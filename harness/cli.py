@@ -84,9 +84,10 @@ def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="ffr", description="Firmware-in-the-loop missions for a fire-fighting robot.")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
-    def common(sp: argparse.ArgumentParser) -> None:
+    def common(sp: argparse.ArgumentParser, link: str = "ctypes:",
+               link_help: str = "firmware link URL (default ctypes:, in-process)") -> None:
         sp.add_argument("--seed", type=_seed, default=None, help="random seed (default 0 or the scenario's)")
-        sp.add_argument("--link", default="ctypes:", help="firmware link URL (default ctypes:, in-process)")
+        sp.add_argument("--link", default=link, help=link_help)
         sp.add_argument("--json", metavar="FILE|-", help="write the result(s) as JSON")
         sp.add_argument("--plot", metavar="FILE.png", help="draw the arena and the robot's path(s)")
         sp.add_argument("--noise", default=None, help="sensor noise profile (none, typical, harsh, FILE.toml)")
@@ -95,16 +96,23 @@ def build_parser() -> argparse.ArgumentParser:
         sp.add_argument("--set", dest="settings", type=_setting, action="append", default=[],
                         metavar="KEY=VALUE", help="firmware.NAME=V or robot.PATH=V (repeatable)")
 
+    def where(sp: argparse.ArgumentParser) -> None:
+        g = sp.add_mutually_exclusive_group()
+        g.add_argument("--room", type=int, help="candle at the arena's default spot in room N")
+        g.add_argument("--candle", type=_candle, help="candle at X,Y (metres)")
+        g.add_argument("--scenario", help="scenario TOML file")
+
     run = sub.add_parser("run", help="run one mission")
-    where = run.add_mutually_exclusive_group()
-    where.add_argument("--room", type=int, help="candle at the arena's default spot in room N")
-    where.add_argument("--candle", type=_candle, help="candle at X,Y (metres)")
-    where.add_argument("--scenario", help="scenario TOML file")
+    where(run)
     common(run)
     run.add_argument("--replay", metavar="FILE.html", help="write an interactive 3D replay (one offline HTML file)")
     t1 = sub.add_parser("table1", help="the four-room missions beside the paper's Table 1")
     common(t1)
     t1.add_argument("--replay-dir", metavar="DIR", help="write each room's replay as DIR/replay_roomN.html")
+    b2b = sub.add_parser("b2b", help="the same mission through two firmware builds: are the actuator traces identical?")
+    where(b2b)
+    common(b2b, "qemu:mps2-an386", "the build under test (default qemu:mps2-an386, the Cortex-M4 build on QEMU)")
+    b2b.add_argument("--reference", default="ctypes:", help="the reference build (default ctypes:, the host library)")
     return p
 
 
@@ -193,10 +201,49 @@ def table1_text(results: Sequence[Any]) -> str:
     return "\n".join(rows)
 
 
+def _execute_b2b(args: argparse.Namespace) -> int:
+    from harness.b2b import back_to_back
+    from harness.links import LinkError, open_link
+
+    scn = _scenarios(args, [args.room])[0]
+    target = open_link(args.link)
+    reference = open_link(args.reference)
+    try:
+        rep = back_to_back(scn, target, reference)
+    finally:
+        target.close()
+        reference.close()
+    for res in rep.results:
+        if res.outcome == "error" and res.detail.startswith(f"{res.link}:"):
+            raise LinkError(res.detail)
+    verdict = ("identical" if rep.identical else
+               f"DIFFERENT from tick {rep.first_tick} (t = {rep.first_time_s} s), "
+               f"largest PWM difference {rep.max_pwm_diff} per mille")
+    print(f"{scn.name}: {rep.reference} vs {rep.target}: {verdict}; {rep.detail}")
+    print(f"  outcomes: {rep.results[0].outcome} / {rep.results[1].outcome}; "
+          f"ticks {rep.ticks_reference} / {rep.ticks_target}")
+    payload = rep.to_json()
+    prof = getattr(target, "profile", None)
+    if prof is not None:
+        print(f"  ffr_step on the target: mean {prof.mean_insn:.0f}, worst {prof.max_insn} instructions "
+              f"over {prof.steps} steps")
+        payload["target_profile"] = {"steps": prof.steps, "mean_insn": round(prof.mean_insn, 1),
+                                     "max_insn": prof.max_insn}
+    if args.json:
+        text = json.dumps(payload, indent=2) + "\n"
+        if args.json == "-":
+            sys.stdout.write(text)
+        else:
+            _write_atomic(args.json, text)
+    return EXIT_OK if rep.identical else EXIT_MISSION
+
+
 def _execute(args: argparse.Namespace) -> int:
     from harness.links import LinkError, open_link
     from harness.loop import run_mission
 
+    if args.command == "b2b":
+        return _execute_b2b(args)
     if args.command == "table1":
         from sim_plant.arena import load_arena
         rooms: list[int | None] = [r.id for r in load_arena(args.arena).rooms]
@@ -278,7 +325,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     try:
         args = build_parser().parse_args(argv)
-        if args.command == "run" and args.room is None and args.candle is None and args.scenario is None:
+        if args.command in ("run", "b2b") and args.room is None and args.candle is None and args.scenario is None:
             args.room = 1
         return _execute(args)
     except UsageError as exc:

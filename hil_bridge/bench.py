@@ -3,6 +3,7 @@ real-time factor of a whole mission over it. Measured, never asserted."""
 
 from __future__ import annotations
 
+import shutil
 import time
 
 from harness.firmware_config import build_config
@@ -12,6 +13,7 @@ from harness.loop import run_mission
 from harness.scenario import make_scenario
 
 LINKS = ("ctypes:", "host-board:serial", "host-board:serial#transport=tcp", "host-board:can", "host-board:can#fd=1")
+EMULATED = "qemu:mps2-an386"  # the Cortex-M4 build, when QEMU is installed
 
 
 def round_trip_us(url: str, n: int = 3000) -> float:
@@ -35,7 +37,8 @@ def bench_links() -> None:
     print("links: round trip per tick (3000 ticks) and a whole mission (room 4) over each:")
     scn = make_scenario(room=4)
     run_mission(scn)  # warm-up (numba cache, library)
-    for url in LINKS:
+    links = LINKS + ((EMULATED,) if shutil.which("qemu-system-arm") else ())
+    for url in links:
         rt = round_trip_us(url)
         with open_link(url) as link:
             t0 = time.perf_counter()

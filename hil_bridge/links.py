@@ -25,6 +25,13 @@ def _host_board(url: str) -> FirmwareLink:
     return open_host_board(url)
 
 
+def _qemu(url: str) -> FirmwareLink:
+    from hil_bridge.qemu_board import open_qemu
+
+    return open_qemu(url)
+
+
 register_link("serial", _serial)
+register_link("qemu", _qemu)
 register_link("can", _can)
 register_link("host-board", _host_board)

@@ -37,6 +37,12 @@ typedef struct {
     uint8_t have_out;         /* last_out is valid; the watchdog is armed */
     uint8_t tripped;          /* the watchdog stopped the actuators    */
     uint8_t reserved[2];
+    /* Optional profile of ffr_step: a board that has a free-running up-counter
+     * (24 bits are enough) sets step_clock; the link reads it around every step. */
+    uint32_t (*step_clock)(void);
+    uint32_t prof_steps;
+    uint32_t prof_sum;        /* counts, all steps */
+    uint32_t prof_max;        /* counts, the slowest step */
 } ffr_board_link_t;
 
 void ffr_board_link_init(ffr_board_link_t *b, uint32_t watchdog_ms, uint32_t now_ms);

@@ -31,6 +31,22 @@ void ffr_board_link_init(ffr_board_link_t *b, uint32_t watchdog_ms, uint32_t now
     }
     b->watchdog_ms = watchdog_ms;
     b->last_rx_ms = now_ms;
+    b->step_clock = 0;
+}
+
+static void step_firmware(ffr_board_link_t *b)
+{
+    uint32_t c0, dc;
+    if (b->step_clock == 0) {
+        ffr_step(&b->fw, &b->msg.u.inputs, &b->last_out);
+        return;
+    }
+    c0 = b->step_clock();
+    ffr_step(&b->fw, &b->msg.u.inputs, &b->last_out);
+    dc = (b->step_clock() - c0) & 0xFFFFFFu;
+    b->prof_steps++;
+    b->prof_sum += dc;
+    b->prof_max = dc > b->prof_max ? dc : b->prof_max;
 }
 
 static size_t on_inputs(ffr_board_link_t *b, uint32_t now_ms, uint8_t *reply, size_t cap)
@@ -42,7 +58,7 @@ static size_t on_inputs(ffr_board_link_t *b, uint32_t now_ms, uint8_t *reply, si
     if (b->have_out && seq == b->last_out.seq) {
         b->repeats++; /* our answer was lost: the same answer again, no second step */
     } else if (!b->have_out || seq == b->last_out.seq + 1u) {
-        ffr_step(&b->fw, &b->msg.u.inputs, &b->last_out);
+        step_firmware(b);
         b->have_out = 1u;
     } else {
         return error_reply(b, FFR_ERR_SEQUENCE, 0u, seq, reply, cap);

@@ -15,4 +15,9 @@ void uart_write(const uint8_t *p, uint32_t n);
 void uart_puts(const char *s);
 /* -1 when nothing has arrived */
 int uart_getc(void);
+int uart_rx_empty(void);
+void uart1_puts(const char *s);
+void uart0_rx_handler(void);
+/* sleep until an interrupt (a byte, the millisecond tick) unless one is already due */
+void board_idle(void);
 #endif

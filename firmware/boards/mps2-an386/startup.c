@@ -20,16 +20,18 @@ void systick_handler(void);
 /* the one piece of board state an interrupt must reach */
 static volatile uint32_t g_ms;
 
-/* initial stack pointer, then the 15 system exception handlers */
+/* initial stack pointer, the 15 system exception handlers, the external interrupts */
 typedef struct {
     uint32_t *sp;
     void (*handler[15])(void);
+    void (*irq[32])(void);
 } vector_table_t;
 
 __attribute__((section(".vectors"), used)) static const vector_table_t vectors = {
     &_estack,
     {reset_handler, default_handler, default_handler, default_handler, default_handler, default_handler, 0, 0, 0,
      0, default_handler, default_handler, 0, default_handler, systick_handler},
+    {uart0_rx_handler}, /* IRQ 0: UART0 receive; the others are never enabled */
 };
 
 void reset_handler(void)
@@ -63,6 +65,17 @@ void board_clock_init(void)
 }
 
 uint32_t board_millis(void) { return g_ms; }
+
+void board_idle(void)
+{
+    /* masked, test, sleep: an interrupt that arrives after the test still
+     * wakes the wfi, and is taken once unmasked */
+    __asm__ volatile("cpsid i" ::: "memory");
+    if (uart_rx_empty()) {
+        __asm__ volatile("wfi");
+    }
+    __asm__ volatile("cpsie i" ::: "memory");
+}
 
 /* ARM semihosting SYS_EXIT: QEMU (-semihosting) ends with this status. */
 void board_exit(int status)

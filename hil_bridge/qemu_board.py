@@ -1,0 +1,168 @@
+"""``qemu:<machine>``: the Cortex-M4 build of the firmware on an emulated board.
+
+``qemu:mps2-an386`` starts ``qemu-system-arm -M mps2-an386`` with the board
+image (``build/arm/mps2-an386-board.elf``: firmware, codec and board link
+behind the CMSDK UART), connects the serial link to its UART0 through a
+loopback socket, and runs the mission exactly as over a real serial port.
+
+QEMU runs with ``-icount shift=0``: every guest instruction is one
+nanosecond of virtual time, so the board's timer readings around each
+``ffr_step`` count instructions (40 per count at 25 MHz). The board writes
+that profile to UART1, which goes to a file the link reads when it closes
+(``QemuLink.profile``). QEMU never outlives the link: ``close()`` ends it
+(terminate, then kill), it is killed with its parent (PR_SET_PDEATHSIG),
+and Ctrl-C reaches the CLI's ``finally`` that closes the link.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import ctypes
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from harness.links.base import LinkError
+from hil_bridge.options import WireOptions, parse_url
+from hil_bridge.serial_link import SerialLink
+
+REPO = Path(__file__).resolve().parents[1]
+MACHINES = {"mps2-an386": REPO / "build" / "arm" / "mps2-an386-board.elf"}
+INSN_PER_COUNT = 40  # a 25 MHz timer, one instruction per ns of virtual time
+_PR_SET_PDEATHSIG = 1
+
+
+@dataclass(frozen=True)
+class StepProfile:
+    steps: int
+    mean_insn: float
+    max_insn: int
+
+
+def _die_with_parent() -> None:  # runs in the child between fork and exec
+    libc = ctypes.CDLL(None, use_errno=True)
+    libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+
+
+def _free_port() -> int:
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+class QemuBoard:
+    """qemu-system-arm running a board image, its UART0 on a loopback socket."""
+
+    def __init__(self, machine: str, elf: Path, log: str = "") -> None:
+        qemu = shutil.which("qemu-system-arm")
+        if qemu is None:
+            raise LinkError(f"qemu:{machine}: qemu-system-arm not found (apt-get install qemu-system-arm)")
+        if not elf.exists():
+            raise LinkError(f"qemu:{machine}: board image {elf} not found: build it with `make firmware-boards`")
+        self.machine = machine
+        self.port = _free_port()
+        self.tmp = Path(tempfile.mkdtemp(prefix="ffr-qemu-"))
+        self.profile_path = self.tmp / "uart1.log"
+        self._log = open(log, "ab") if log else None  # noqa: SIM115 - closed in stop()
+        cmd = [qemu, "-M", machine, "-nographic", "-monitor", "none", "-icount", "shift=0",
+               "-kernel", str(elf),
+               "-chardev", f"socket,id=link,host=127.0.0.1,port={self.port},server=on,wait=on,nodelay=on",
+               "-serial", "chardev:link", "-serial", f"file:{self.profile_path}"]
+        self.proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=self._log or subprocess.DEVNULL,
+                                     stderr=self._log or subprocess.DEVNULL, close_fds=True,
+                                     preexec_fn=_die_with_parent)  # noqa: PLW1509 - prctl only
+
+    def gone(self, wait_s: float = 0.0) -> str | None:
+        rc = self.proc.poll()
+        if rc is None and wait_s > 0:
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                rc = self.proc.wait(timeout=wait_s)
+        if rc is None:
+            return None
+        how = f"killed by {signal.Signals(-rc).name}" if rc < 0 else f"exited with status {rc}"
+        return f"qemu-system-arm ({self.machine}, pid {self.proc.pid}) {how}"
+
+    def profile(self) -> StepProfile | None:
+        try:
+            text = self.profile_path.read_text(errors="replace")
+        except OSError:
+            return None
+        found = re.findall(r"ffr-profile steps=(\d+) sum=(\d+) max=(\d+)", text)
+        if not found:
+            return None
+        steps, total, worst = (int(v) for v in found[-1])
+        return StepProfile(steps, total * INSN_PER_COUNT / steps, worst * INSN_PER_COUNT)
+
+    def stop(self) -> None:
+        p = self.proc
+        for step in (p.terminate, p.kill):
+            if p.poll() is not None:
+                break
+            step()
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                p.wait(timeout=2.0)
+        if self._log is not None:
+            self._log.close()
+            self._log = None
+
+    def cleanup(self) -> None:
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+
+class QemuLink(SerialLink):
+    """The serial link to the firmware on an emulated board it started and will stop."""
+
+    def __init__(self, board: QemuBoard, opts: WireOptions) -> None:
+        self.board = board
+        self.profile: StepProfile | None = None
+        deadline = time.monotonic() + 10.0
+        while True:  # QEMU listens a moment after it starts
+            try:
+                super().__init__(f"socket://127.0.0.1:{board.port}", opts)
+                break
+            except LinkError:
+                gone = board.gone()
+                if gone or time.monotonic() > deadline:
+                    raise LinkError(f"qemu:{board.machine}: {gone or 'no UART socket within 10 s'}") from None
+                time.sleep(0.02)
+
+    def _gone(self, wait_s: float = 0.0) -> str | None:
+        return self.board.gone(wait_s)
+
+    def close(self) -> None:
+        try:
+            super().close()
+        finally:
+            self.board.stop()
+            self.profile = self.board.profile()
+            self.board.cleanup()
+
+
+def open_qemu(url: str) -> QemuLink:
+    machine, opts = parse_url(url)
+    frag = url.partition("#")[2]
+    # an emulated board translates its code on first use: give the start-up and each step more time
+    if "handshake_timeout_s" not in frag:
+        opts.handshake_timeout_s = 10.0
+    if "step_budget_s" not in frag:
+        opts.step_budget_s = 5.0
+    if "timeout_s" not in frag.replace("handshake_timeout_s", ""):
+        opts.timeout_s = 0.1
+    elf = MACHINES.get(machine)
+    if elf is None:
+        raise LinkError(f"--link = {url!r}: unknown emulated board '{machine}', known: {sorted(MACHINES)}")
+    board = QemuBoard(machine, elf, opts.log)
+    try:
+        link = QemuLink(board, opts)
+    except BaseException:
+        board.stop()
+        board.cleanup()
+        raise
+    link.url = url
+    return link
