@@ -150,6 +150,8 @@ bench: setup firmware-host
 	@if command -v $(ARM_CC) >/dev/null && command -v $(QEMU) >/dev/null; then \
 		echo "Cortex-M4 (QEMU mps2-an386, -icount): ffr_step instructions, budget 20000:"; \
 		$(MAKE) -s selftest | grep ffr-profile; \
+		$(MAKE) -s firmware-boards >/dev/null; \
+		for r in 1 4; do $(VENV)/bin/ffr b2b --room $$r | sed -n "1s/^/  /p;3p"; done; \
 	else echo "Cortex-M4 profile skipped: needs $(ARM_CC) and $(QEMU)"; fi
 
 clean:
