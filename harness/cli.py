@@ -103,6 +103,8 @@ def build_parser() -> argparse.ArgumentParser:
     common(run)
     t1 = sub.add_parser("table1", help="the four-room missions beside the paper's Table 1")
     common(t1)
+    from harness.sweep_cli import add_sweep_parser
+    add_sweep_parser(sub)
     return p
 
 
@@ -187,6 +189,10 @@ def table1_text(results: Sequence[Any]) -> str:
 def _execute(args: argparse.Namespace) -> int:
     from harness.links import open_link
     from harness.loop import run_mission
+
+    if args.command == "sweep":
+        from harness.sweep_cli import run_sweep
+        return run_sweep(args)
 
     if args.command == "table1":
         from sim_plant.arena import load_arena
