@@ -226,9 +226,13 @@ typedef struct {
 typedef struct {
     uint8_t seen[2];               /* side wall seen long enough (L, R)       */
     uint8_t opened[2];             /* then it ended: latched for the step     */
+    uint8_t front_saw[2];          /* the front corner ranger saw it this step */
+    uint8_t reserved[2];
     float seen_mm[2];              /* travel with the wall seen               */
     float open_mm[2];              /* travel with the side open               */
+    float rear_open_mm[2];         /* travel with the rear ranger open too    */
     float open_at_mm[2];           /* odometry distance where it opened       */
+    float rear_at_mm[2];           /* where the rear ranger last saw the wall */
     float since_open_mm[2];        /* travel since the side last read open    */
 } ffr_openings_t;
 

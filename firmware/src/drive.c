@@ -37,10 +37,16 @@ void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
         }
     }
     if (use >= 0) {
-        if (w.angle_valid) {
+        if (!w.angle_valid) {
+            /* one ranger gives the distance but not the wall's direction: take the
+             * wall to run along the corridor heading, so the steering keeps its
+             * heading feedback (without it, a distance error turns the robot
+             * steadily until the one ranger sees something else) */
+            w.angle_rad = ffr_wrap_pi(st->route.heading_ref_rad - st->odo.heading_rad);
+        } else {
             float wall_dir = st->odo.heading_rad + w.angle_rad;
             float diff = ffr_wrap_pi(wall_dir - st->route.heading_ref_rad);
-            if (ffr_absf(diff) < 5.0f * FFR_DEG) {
+            if (ffr_absf(diff) < 12.0f * FFR_DEG) {
                 st->route.heading_ref_rad += cfg->wall_align_gain * diff;
             }
         }

@@ -27,6 +27,12 @@ enum {
     RP_LEAVE_OUT
 };
 
+/* A flame within the fans' reach reads far above the detection threshold:
+ * on axis at 30 cm about 20x, at the edge of the sensors' view still ~8x. */
+#define FLAME_NEAR 4.0f
+/* contest lines are 2.5 cm wide, walls about 2 cm thick */
+#define DOOR_WALL_FACE_MM 25.0f
+
 static float flame_sum(const ffr_inputs_t *in) { return (float)in->flame[0] + (float)in->flame[1]; }
 
 /* the unwrapped heading closest to `heading` that points the way `dir` does */
@@ -99,6 +105,53 @@ static int through_door(const ffr_state_t *st, float dir)
     return ffr_absf(lat) < st->cfg.hallway_half_mm;
 }
 
+/* A body-frame point relative to where the doorway line was crossed: depth
+ * into the room (along the entry heading) and lateral offset, mm. */
+static float depth_in(const ffr_state_t *st, float bx, float by, float *lateral)
+{
+    const ffr_room_state_t *r = &st->room;
+    float c = ffr_cosf(st->odo.heading_rad);
+    float s = ffr_sinf(st->odo.heading_rad);
+    float dx = st->odo.x_mm + c * bx - s * by - r->line_x_mm;
+    float dy = st->odo.y_mm + s * bx + c * by - r->line_y_mm;
+    float ce = ffr_cosf(r->entry_heading_rad);
+    float se = ffr_sinf(r->entry_heading_rad);
+    if (lateral) {
+        *lateral = -dx * se + dy * ce;
+    }
+    return dx * ce + dy * se;
+}
+
+/* Is the line under the line sensor the doorway line crossed on the way in? */
+static int at_doorway_line(const ffr_state_t *st)
+{
+    float lat;
+    float depth = depth_in(st, st->cfg.line_sensor_x_mm, 0.0f, &lat);
+    return depth < 60.0f && ffr_absf(lat) < st->cfg.hallway_half_mm;
+}
+
+/*
+ * The wall the door is in: the robot crossed its doorway line, so odometry
+ * knows where that wall runs (through the crossing, square to the entry
+ * heading). A candle by that wall is approached along it, and the door's jamb
+ * is a thin wall end the rangers may not see: stop before a front corner
+ * reaches the wall's line, as if it were seen. Only a stop, no steering: the
+ * approach stays aimed at the flame, so the fans reach it from there.
+ * Odometry inside one room is short and reliable, hence half the rangers'
+ * margin.
+ */
+static void door_wall_guard(const ffr_state_t *st, int *stop)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    float dl = depth_in(st, cfg->body_front_mm, cfg->body_half_width_mm, 0);
+    float dr = depth_in(st, cfg->body_front_mm, -cfg->body_half_width_mm, 0);
+    /* the doorway line lies on the wall's centre line and is first seen at its
+     * near edge: the wall's room-side face is about a line width deeper */
+    if ((dl < dr ? dl : dr) < DOOR_WALL_FACE_MM + 0.5f * cfg->guard_stop_mm) {
+        *stop = 1;
+    }
+}
+
 /*
  * Approach guard: the rangers' hit points near the body. Returns a yaw rate
  * that steers away from a wall beside the front half, and sets *stop when a
@@ -134,6 +187,7 @@ static float approach_guard(const ffr_state_t *st, int *stop)
             }
         }
     }
+    door_wall_guard(st, stop);
     return w;
 }
 
@@ -215,8 +269,23 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         float v;
         int guard_stop;
         float guard_w = approach_guard(st, &guard_stop);
+        if (st->lines.edge && at_doorway_line(st)) {
+            /* the doorway line crossed on the way in: the flame is beyond this
+             * room, seen through its door. Back out and search on. */
+            ffr_stop(st);
+            r->flame_found = 0;
+            phase(st, RP_BACK_DRIVE);
+            return 0;
+        }
         if (st->lines.edge || guard_stop || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
             ffr_stop(st);
+            if (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect) {
+                /* stopped by a wall with the flame still far: it is not in
+                 * this room but seen through the door. Back out, search on. */
+                r->flame_found = 0;
+                phase(st, RP_BACK_DRIVE);
+                return 0;
+            }
             phase(st, RP_EXTINGUISH);
             return 0;
         }

@@ -28,9 +28,13 @@ ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_C
     w.angle_rad = 0.0f;
     if (fv) {
         hit_point(cfg, f, ir_mm[f], &fx, &fy);
+        /* a hit farther to the side than open_mm is across an opening, not the
+         * wall beside the robot: a far reading is also the least accurate one */
+        fv = ffr_absf(fy) < cfg->open_mm;
     }
     if (rv) {
         hit_point(cfg, r, ir_mm[r], &rx, &ry);
+        rv = ffr_absf(ry) < cfg->open_mm;
     }
     if (fv && rv) {
         float wx = fx - rx;
