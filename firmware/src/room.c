@@ -143,12 +143,19 @@ static int at_doorway_line(const ffr_state_t *st)
 static void door_wall_guard(const ffr_state_t *st, int *stop)
 {
     const ffr_config_t *cfg = &st->cfg;
-    float dl = depth_in(st, cfg->body_front_mm, cfg->body_half_width_mm, 0);
-    float dr = depth_in(st, cfg->body_front_mm, -cfg->body_half_width_mm, 0);
-    /* the doorway line lies on the wall's centre line and is first seen at its
-     * near edge: the wall's room-side face is about a line width deeper */
-    if ((dl < dr ? dl : dr) < DOOR_WALL_FACE_MM + 0.5f * cfg->guard_stop_mm) {
-        *stop = 1;
+    /* only by the door: farther along, the wall is a wall the rangers see, and
+     * the odometry heading's error (a few degrees after a scan) grows with the
+     * distance from the crossing point */
+    const float reach = cfg->hallway_half_mm + cfg->guard_side_mm;
+    int k;
+    for (k = 0; k < 2; ++k) {
+        float lat;
+        float d = depth_in(st, cfg->body_front_mm, k ? cfg->body_half_width_mm : -cfg->body_half_width_mm, &lat);
+        /* the doorway line lies on the wall's centre line and is first seen at
+         * its near edge: the wall's room-side face is about a line width deeper */
+        if (ffr_absf(lat) < reach && d < DOOR_WALL_FACE_MM + 0.5f * cfg->guard_stop_mm) {
+            *stop = 1;
+        }
     }
 }
 
