@@ -340,13 +340,29 @@ def summary(rows: Sequence[dict[str, Any]], params: Sequence[Param] = (), wall_s
         lines.append(f"replay the first: {first['replay']}")
     for p in params:
         lines.append(f"{p.key}:")
-        for v in sorted({r[p.key] for r in rows}):
-            rr = [r for r in rows if r[p.key] == v]
+        for label, rr in param_groups(rows, p):
+            if not rr:
+                continue
             good = sum(1 for r in rr if r["success"])
             times = [r["total_time_s"] for r in rr if r["total_time_s"] is not None]
-            lines.append(f"  {v:>10.4g}: {100.0 * good / len(rr):6.1f} % of {len(rr)}, "
+            lines.append(f"  {label:>21}: {100.0 * good / len(rr):6.1f} % of {len(rr)}, "
                          f"mean home time {np.mean(times) if times else float('nan'):6.1f} s")
     return "\n".join(lines)
+
+
+def param_groups(rows: Sequence[dict[str, Any]], p: Param, bins: int = 5) -> list[tuple[str, list[dict[str, Any]]]]:
+    """Rows by the value of a swept parameter; a random sweep's values in ``bins`` equal bins."""
+    vals = sorted({float(r[p.key]) for r in rows})
+    if len(vals) <= 12:
+        return [(f"{v:.4g}", [r for r in rows if float(r[p.key]) == v]) for v in vals]
+    edges = np.linspace(p.lo, p.hi, bins + 1)
+    out = []
+    for k in range(bins):
+        lo, hi = edges[k], edges[k + 1]
+        last = k == bins - 1
+        out.append((f"{lo:.4g}..{hi:.4g}", [r for r in rows if lo <= float(r[p.key]) < hi
+                                              or (last and float(r[p.key]) == hi)]))
+    return out
 
 
 def _cause(r: dict[str, Any]) -> str:
@@ -391,11 +407,10 @@ def plot(path: str | Path, rows: Sequence[dict[str, Any]], params: Sequence[Para
     for k, p in enumerate(params):
         ax = axes[0, 2 + k]
         vs = sorted({float(r[p.key]) for r in rows})
-        if len(vs) > 12:  # random sweep: bin the values
+        if len(vs) > 12:  # random sweep: the values in bins
             edges = np.linspace(p.lo, p.hi, 11)
             centers = 0.5 * (edges[1:] + edges[:-1])
-            groups = [[r for r in rows if lo <= float(r[p.key]) <= hi] for lo, hi in zip(edges[:-1], edges[1:],
-                                                                                           strict=True)]
+            groups = [g for _, g in param_groups(rows, p, bins=10)]
         else:
             centers = np.array(vs)
             groups = [[r for r in rows if float(r[p.key]) == v] for v in vs]

@@ -32,6 +32,8 @@ enum {
 #define FLAME_NEAR 4.0f
 /* contest lines are 2.5 cm wide, walls about 2 cm thick */
 #define DOOR_WALL_FACE_MM 25.0f
+/* clearance kept beyond the body's corner radius for the scan's turn in place */
+#define SCAN_MARGIN_MM 35.0f
 
 static float flame_sum(const ffr_inputs_t *in) { return (float)in->flame[0] + (float)in->flame[1]; }
 
@@ -198,6 +200,29 @@ static float approach_guard(const ffr_state_t *st, int *stop)
     return w;
 }
 
+/*
+ * The scan turns in place, sweeping a circle of the body's corner radius: a
+ * robot that came through the door off-centre and has a side wall closer
+ * than that edges away from it while it drives in (a heading offset, so the
+ * heading hold still applies).
+ */
+static float scan_room_offset(const ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    float need = ffr_sqrtf(cfg->body_front_mm * cfg->body_front_mm + cfg->body_half_width_mm * cfg->body_half_width_mm)
+                 + SCAN_MARGIN_MM;
+    float off = 0.0f;
+    int side;
+    for (side = 0; side < 2; ++side) {
+        ffr_wall_t w = ffr_wall_estimate(cfg, st->ir_mm, side);
+        if (w.valid && w.dist_mm < need) {
+            /* left wall: turn right (negative), and the other way round */
+            off += (side == FFR_SIDE_LEFT ? -1.0f : 1.0f) * (need - w.dist_mm) * 0.5f * FFR_DEG;
+        }
+    }
+    return ffr_clampf(off, -20.0f * FFR_DEG, 20.0f * FFR_DEG);
+}
+
 int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -231,7 +256,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
             begin_scan(st);
             return 0;
         }
-        ffr_drive_heading(st, r->entry_heading_rad,
+        ffr_drive_heading(st, r->entry_heading_rad + scan_room_offset(st),
                           ffr_clampf(2.0f * (cfg->room_entry_mm - moved) + 60.0f, 60.0f, cfg->room_speed_mm_s));
         return 0;
     case RP_SCAN: {
