@@ -58,7 +58,7 @@ def pytest_addoption(parser: pytest.Parser) -> None:
 # The property tests' budgets. "quick" keeps `make test` short; "thorough" is
 # `make test-thorough`. Derandomized: CI runs the same examples every time.
 PROFILES: dict[str, dict[str, Any]] = {
-    "quick": {"max_examples": 6, "derandomize": True},
+    "quick": {"max_examples": 12, "derandomize": True},
     "thorough": {"max_examples": 150, "derandomize": True},
 }
 active_profile = "quick"
@@ -207,7 +207,11 @@ def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]):
         missions = item.stash.get(_REPLAYS, [])
         if missions:
             where = item.config.getoption("--ffr-failures")
-            lines = [f"{what} -> {replay_command(scn, url, where)}" for scn, url, what in missions]
+            # a property test runs many missions: the last ones are the (shrunk) failure
+            shown = missions[-5:]
+            lines = [f"{what} -> {replay_command(scn, url, where)}" for scn, url, what in shown]
+            if len(missions) > len(shown):
+                lines.insert(0, f"({len(missions)} missions in this test; the last {len(shown)}:)")
             report.sections.append(("ffr replay", "\n".join(lines)))
             # the last line of a failure is what a reader sees first: the command
             report.longrepr = f"{report.longrepr}\nffr replay: {lines[-1].rsplit(' -> ', 1)[-1]}"

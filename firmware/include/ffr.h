@@ -221,6 +221,7 @@ typedef struct {
     uint8_t count;
     float last_edge_mm;            /* odometry distance at the last edge      */
     uint8_t edge;                  /* 1 on the tick of a new line             */
+    uint8_t run;                   /* consecutive ticks reading white         */
 } ffr_line_counter_t;
 
 typedef struct {

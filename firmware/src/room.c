@@ -124,8 +124,9 @@ static float depth_in(const ffr_state_t *st, float bx, float by, float *lateral)
     return dx * ce + dy * se;
 }
 
-/* Is the line under the line sensor the doorway line crossed on the way in? */
-static int at_doorway_line(const ffr_state_t *st)
+/* Is the robot's nose at the doorway it came in by (its line, or about to
+ * reach it)? Approaching a flame, that means the flame is out there. */
+static int nose_in_doorway(const ffr_state_t *st)
 {
     float lat;
     float depth = depth_in(st, st->cfg.line_sensor_x_mm, 0.0f, &lat);
@@ -301,19 +302,12 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         float v;
         int guard_stop;
         float guard_w = approach_guard(st, &guard_stop);
-        if (st->lines.edge && at_doorway_line(st)) {
-            /* the doorway line crossed on the way in: the flame is beyond this
-             * room, seen through its door. Back out and search on. */
-            ffr_stop(st);
-            r->flame_found = 0;
-            phase(st, RP_BACK_DRIVE);
-            return 0;
-        }
         if (st->lines.edge || guard_stop || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
             ffr_stop(st);
-            if (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect) {
-                /* stopped by a wall with the flame still far: it is not in
-                 * this room but seen through the door. Back out, search on. */
+            if (nose_in_doorway(st) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
+                /* at the doorway it came in by, or stopped by a wall with the
+                 * flame still far: the flame is not in this room but seen
+                 * through its door. Back out and search on. */
                 r->flame_found = 0;
                 phase(st, RP_BACK_DRIVE);
                 return 0;

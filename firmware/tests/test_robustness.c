@@ -152,6 +152,8 @@ static void enter_and_scan(rig_t *r, ffr_config_t *cfg, float flame_deg, float p
     r->in.line = 1;
     tick(r);
     tick(r);
+    tick(r);
+    tick(r);
     r->in.line = 0;
     CHECK(run_until_state(r, FFR_ST_SCAN, 400));
     for (i = 0; i < 600 && r->out.state == FFR_ST_SCAN; ++i) {
@@ -210,6 +212,8 @@ static void flame_beyond_the_door_is_left_alone(void)
     r.st.odo.y_mm = r.st.room.line_y_mm - cfg.line_sensor_x_mm * ffr_sinf(r.st.odo.heading_rad);
     r.in.line = 1;
     tick(&r);
+    tick(&r);
+    tick(&r);
     r.in.line = 0;
     CHECK(r.out.state == FFR_ST_TO_DOOR);
     CHECK(r.out.fan == 0 && r.st.room.flame_found == 0);
@@ -219,6 +223,8 @@ static void flame_beyond_the_door_is_left_alone(void)
         tick(&r);
     }
     r.in.line = 1;
+    tick(&r);
+    tick(&r);
     tick(&r);
     r.in.line = 0;
     CHECK(r.out.state == FFR_ST_EXTINGUISH);
