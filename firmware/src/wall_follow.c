@@ -26,15 +26,17 @@ ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_C
     w.angle_valid = 0;
     w.dist_mm = 0.0f;
     w.angle_rad = 0.0f;
+    /* a hit farther to the side than halfway from the wanted distance to
+     * open_mm is across an opening (a hallway's far wall), not the wall beside
+     * the robot; a far reading is also the least accurate one */
+    const float beside = 0.5f * (cfg->wall_target_mm + cfg->open_mm);
     if (fv) {
         hit_point(cfg, f, ir_mm[f], &fx, &fy);
-        /* a hit farther to the side than open_mm is across an opening, not the
-         * wall beside the robot: a far reading is also the least accurate one */
-        fv = ffr_absf(fy) < cfg->open_mm;
+        fv = ffr_absf(fy) < beside;
     }
     if (rv) {
         hit_point(cfg, r, ir_mm[r], &rx, &ry);
-        rv = ffr_absf(ry) < cfg->open_mm;
+        rv = ffr_absf(ry) < beside;
     }
     if (fv && rv) {
         float wx = fx - rx;
@@ -78,8 +80,11 @@ float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side
     /* wanted heading relative to the wall: toward it when too far */
     float sign = side == FFR_SIDE_LEFT ? 1.0f : -1.0f;
     float lim = cfg->turn_rate_deg_s * FFR_DEG;
+    /* one ranger's distance (no wall angle) is the least sure: steer by it gently,
+     * so a part that reads long or short does not swing the robot off the wall */
+    float max_deg = w->angle_valid ? cfg->wall_max_deg : 0.4f * cfg->wall_max_deg;
     float want = ffr_clampf(cfg->wall_kp_deg_per_mm * (w->dist_mm - cfg->wall_target_mm),
-                            -cfg->wall_max_deg, cfg->wall_max_deg) * FFR_DEG * sign;
+                            -max_deg, max_deg) * FFR_DEG * sign;
     /* the robot's heading relative to the wall is -angle */
     float err = want + w->angle_rad;
     return ffr_clampf(cfg->heading_kp * err, -lim, lim);
