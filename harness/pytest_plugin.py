@@ -151,7 +151,7 @@ def replay_command(scn: Any, link_url: str, failures_dir: str | Path | None) -> 
         return None
     d = Path(failures_dir)
     d.mkdir(parents=True, exist_ok=True)
-    path = d / (re.sub(r"[^A-Za-z0-9_.-]+", "_", scn.name) + ".toml")
+    path = d / (re.sub(r"[^A-Za-z0-9_.-]+", "_", scn.name) + ".replay.toml")
     path.write_text(scenario_to_toml(scn, comment="written by the ffr pytest plugin: a mission that failed"),
                     encoding="utf-8")
     return shlex.join(["ffr", "run", "--scenario", str(path), *link])

@@ -43,8 +43,9 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const floa
         int r = side == FFR_SIDE_LEFT ? FFR_IR_LR : FFR_IR_RR;
         float d = ir_mm[f];
         float dr = ir_mm[r];
-        int front = d < cfg->open_mm;
-        int rear = dr < cfg->open_mm;
+        /* a wall beside the robot, not one across an opening (wall_follow.c) */
+        int front = ffr_hit_beside(cfg, f, d);
+        int rear = ffr_hit_beside(cfg, r, dr);
         if (rear) {
             op->rear_open_mm[side] = 0.0f;
             op->rear_at_mm[side] = dist_mm + hit_ahead(cfg, r, dr);

@@ -14,6 +14,23 @@ static void hit_point(const ffr_config_t *cfg, int i, float d, float *px, float 
     *py = cfg->ir_y_mm[i] + d * ffr_sinf(a);
 }
 
+/*
+ * A hit farther to the side than halfway from the wanted wall distance to
+ * open_mm is across an opening (a hallway's far wall), not the wall beside
+ * the robot. Halfway keeps the two apart for every GP2D12 within its
+ * datasheet limits: a wall at the wanted distance reads at most ~30 % long,
+ * a hallway's far wall at least ~25 % short.
+ */
+int ffr_hit_beside(const ffr_config_t *cfg, int i, float d_mm)
+{
+    float px, py;
+    if (!ffr_ir_valid(cfg, d_mm)) {
+        return 0;
+    }
+    hit_point(cfg, i, d_mm, &px, &py);
+    return ffr_absf(py) < 0.5f * (cfg->wall_target_mm + cfg->open_mm);
+}
+
 ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], int side)
 {
     ffr_wall_t w;
@@ -26,17 +43,13 @@ ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_C
     w.angle_valid = 0;
     w.dist_mm = 0.0f;
     w.angle_rad = 0.0f;
-    /* a hit farther to the side than halfway from the wanted distance to
-     * open_mm is across an opening (a hallway's far wall), not the wall beside
-     * the robot; a far reading is also the least accurate one */
-    const float beside = 0.5f * (cfg->wall_target_mm + cfg->open_mm);
     if (fv) {
         hit_point(cfg, f, ir_mm[f], &fx, &fy);
-        fv = ffr_absf(fy) < beside;
+        fv = ffr_hit_beside(cfg, f, ir_mm[f]);
     }
     if (rv) {
         hit_point(cfg, r, ir_mm[r], &rx, &ry);
-        rv = ffr_absf(ry) < beside;
+        rv = ffr_hit_beside(cfg, r, ir_mm[r]);
     }
     if (fv && rv) {
         float wx = fx - rx;
