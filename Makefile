@@ -1,7 +1,9 @@
 # ffr - firmware-in-the-loop test harness for a fire-fighting robot.
 #   make run    set up, build, run the four-room missions (table + pictures)
 #   make test   set up, build, run every test
-#   make bench  real-time factor and per-tick costs
+#   make bench  real-time factor and per-tick costs, sweep throughput (missions/s)
+#   make test-thorough  the property tests with the thorough hypothesis profile
+#   make envelope  success rate per kind and level of sensor noise (docs/robustness.md)
 #   make firmware  host library + Cortex-M4 build (flash/RAM printed)
 
 PYTHON ?= python3
@@ -23,7 +25,7 @@ HOST_CFLAGS := $(CSTD) -O2 -fPIC
 ARM_CFLAGS  := $(CSTD) -Os -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 \
                -ffunction-sections -fdata-sections
 
-.PHONY: all setup run test bench firmware firmware-host firmware-arm firmware-test lint clean
+.PHONY: all setup run test test-thorough envelope bench firmware firmware-host firmware-arm firmware-test lint clean
 
 all: firmware-host
 
@@ -69,6 +71,12 @@ test: setup firmware-host $(BUILD)/host/ffr_unit_tests
 	$(VENV)/bin/ruff check .
 	$(BUILD)/host/ffr_unit_tests
 	$(VENV)/bin/pytest -q
+
+test-thorough: setup firmware-host
+	$(VENV)/bin/pytest -q tests/property --ffr-profile thorough
+
+envelope: setup firmware-host
+	$(PY) -m harness.envelope
 
 run: setup firmware-host
 	@mkdir -p $(OUT)

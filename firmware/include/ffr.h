@@ -228,7 +228,8 @@ typedef struct {
     uint8_t seen[2];               /* side wall seen long enough (L, R)       */
     uint8_t opened[2];             /* then it ended: latched for the step     */
     uint8_t front_saw[2];          /* the front corner ranger saw it this step */
-    uint8_t reserved[2];
+    uint8_t rear_ok[2];            /* the rear ranger's wall stayed beside     */
+    float rear_lat0_mm[2];         /* its distance to the side when first seen */
     float seen_mm[2];              /* travel with the wall seen               */
     float open_mm[2];              /* travel with the side open               */
     float rear_open_mm[2];         /* travel with the rear ranger open too    */
@@ -261,6 +262,7 @@ typedef struct {
     float phase_start_mm;
     uint32_t phase_start_ms;
     uint32_t below_since_ms;
+    float flame_f;                 /* flame sum, filtered: is it out?          */
 } ffr_room_state_t;
 
 typedef struct {

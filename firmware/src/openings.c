@@ -9,8 +9,13 @@
  * front ranger too little of the wall to see; the rear ranger, looking back
  * at the wall the robot is passing, counts as seeing it too, and then its
  * own last hit point (behind the origin) marks the wall's end once it opens.
+ * Only a wall the robot passes along: one whose distance to the side stays
+ * put; a wall across a junction behind the robot recedes and does not count.
  */
 #include "ffr_internal.h"
+
+/* a wall alongside keeps its distance to the side within this, mm */
+#define REAR_LAT_DRIFT_MM 60.0f
 
 void ffr_openings_reset(ffr_openings_t *op)
 {
@@ -19,7 +24,8 @@ void ffr_openings_reset(ffr_openings_t *op)
         op->seen[i] = 0;
         op->opened[i] = 0;
         op->front_saw[i] = 0;
-        op->reserved[i] = 0;
+        op->rear_ok[i] = 1;
+        op->rear_lat0_mm[i] = -1.0f;
         op->seen_mm[i] = 0.0f;
         op->open_mm[i] = 0.0f;
         op->rear_open_mm[i] = 0.0f;
@@ -47,11 +53,18 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const floa
         int front = ffr_hit_beside(cfg, f, d);
         int rear = ffr_hit_beside(cfg, r, dr);
         if (rear) {
+            float lat = ffr_absf(cfg->ir_y_mm[r] + dr * ffr_sinf(cfg->ir_angle_deg[r] * FFR_DEG));
+            if (op->rear_lat0_mm[side] < 0.0f) {
+                op->rear_lat0_mm[side] = lat;
+            } else if (ffr_absf(lat - op->rear_lat0_mm[side]) > REAR_LAT_DRIFT_MM) {
+                op->rear_ok[side] = 0; /* not a wall alongside: for good, this step */
+            }
             op->rear_open_mm[side] = 0.0f;
             op->rear_at_mm[side] = dist_mm + hit_ahead(cfg, r, dr);
         } else {
             op->rear_open_mm[side] += step_mm;
         }
+        rear = rear && op->rear_ok[side];
         if (front || rear) {
             op->seen_mm[side] += step_mm;
             if (op->seen_mm[side] >= cfg->wall_seen_mm) {
@@ -74,7 +87,7 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const floa
             if (op->seen[side] && !op->opened[side] && op->open_mm[side] >= cfg->open_confirm_mm) {
                 if (op->front_saw[side]) {
                     op->opened[side] = 1;
-                } else if (op->rear_open_mm[side] >= cfg->open_confirm_mm) {
+                } else if (op->rear_ok[side] && op->rear_open_mm[side] >= cfg->open_confirm_mm) {
                     /* only the rear ranger saw the wall: it ended where that one last hit it */
                     op->opened[side] = 1;
                     op->open_at_mm[side] = op->rear_at_mm[side];

@@ -30,6 +30,8 @@ enum {
 /* A flame within the fans' reach reads far above the detection threshold:
  * on axis at 30 cm about 20x, at the edge of the sensors' view still ~8x. */
 #define FLAME_NEAR 4.0f
+/* share of each new flame reading in the filtered signal (a ~40 ms average) */
+#define FLAME_FILTER 0.25f
 /* contest lines are 2.5 cm wide, walls about 2 cm thick */
 #define DOOR_WALL_FACE_MM 25.0f
 /* clearance kept beyond the body's corner radius for the scan's turn in place */
@@ -65,6 +67,7 @@ void ffr_room_begin(ffr_state_t *st, uint8_t room)
     st->room.attempts = 0;
     st->room.flame_found = 0;
     st->room.below_since_ms = 0;
+    st->room.flame_f = 0.0f;
     st->room.entry_heading_rad = st->route.heading_ref_rad;
     phase(st, RP_ENTER_LINE);
 }
@@ -230,6 +233,9 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
     ffr_room_state_t *r = &st->room;
     float sig = flame_sum(in);
     const float moved = st->odo.dist_mm - r->phase_start_mm;
+    /* whether the flame is out is decided on a filtered signal: near the dark
+     * level, sensor noise alone crosses flame_out now and then */
+    r->flame_f += FLAME_FILTER * (sig - r->flame_f);
     const uint32_t elapsed = st->t_ms - r->phase_start_ms;
 
     switch (r->phase) {
@@ -330,7 +336,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
     case RP_EXTINGUISH:
         ffr_stop(st);
         st->fan = 1;
-        if (sig < cfg->flame_out) {
+        if (r->flame_f < cfg->flame_out) {
             if (r->below_since_ms == 0u) {
                 r->below_since_ms = st->t_ms == 0u ? 1u : st->t_ms;
             }
@@ -353,7 +359,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
     case RP_VERIFY:
         ffr_stop(st);
         st->fan = 0;
-        if (sig >= cfg->flame_out) {
+        if (r->flame_f >= cfg->flame_out) {
             r->below_since_ms = 0u;
             r->attempts = (uint8_t)(r->attempts + 1u);
             if (r->attempts >= cfg->fan_attempts) {
