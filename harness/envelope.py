@@ -31,9 +31,10 @@ REFERENCE: dict[str, dict[str, dict[str, Any]]] = {
     "GP2D12 part spread (datasheet)": {"ir": {"unit_gain_spread": 0.125, "unit_offset_spread": 150.0,
                                               "unit_pivot": 420.0}},
     "flame sigma 10 counts": {"flame": {"sigma": 10.0}},
+    "flame bias +15 counts": {"flame": {"bias": 15.0}},
     "flame part spread 20 %": {"flame": {"unit_gain_spread": 0.2, "unit_offset_spread": 10.0, "unit_pivot": 40.0}},
     "line misreads 0.2 %": {"line": {"flip_prob": 0.002}},
-    "encoder slip 5 % x 0.5": {"encoder": {"slip_prob": 0.05, "slip_fraction": 0.5}},
+    "encoder slip 2 % x 0.3 (typical)": {"encoder": {"slip_prob": 0.02, "slip_fraction": 0.3}},
 }
 # Fields that scale with the level (the rest, e.g. quant_step and pivots, stay).
 _SCALED = {"sigma", "bias", "dropout_prob", "spike_prob", "unit_gain_spread", "unit_offset_spread", "flip_prob",

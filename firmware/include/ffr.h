@@ -286,6 +286,8 @@ typedef struct {
     uint8_t reserved;
     float cmd_v_mm_s;              /* motion command of this tick             */
     float cmd_w_rad_s;
+    float flame_ema;               /* both flame sensors, slowly filtered     */
+    float flame_dark;              /* the lowest of that: no flame in view    */
 } ffr_state_t;
 
 /* Failure codes in ffr_outputs_t.fail_code. */

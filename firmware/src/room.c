@@ -37,7 +37,14 @@ enum {
 /* clearance kept beyond the body's corner radius for the scan's turn in place */
 #define SCAN_MARGIN_MM 35.0f
 
-static float flame_sum(const ffr_inputs_t *in) { return (float)in->flame[0] + (float)in->flame[1]; }
+/* flame_detect and flame_out are set for this dark level (2 x 40 counts) */
+#define FLAME_DARK_NOMINAL 80.0f
+
+/* both flame sensors, measured from the dark level learned so far (mission.c) */
+static float flame_sum(const ffr_state_t *st, const ffr_inputs_t *in)
+{
+    return (float)in->flame[0] + (float)in->flame[1] - (st->flame_dark - FLAME_DARK_NOMINAL);
+}
 
 /* the unwrapped heading closest to `heading` that points the way `dir` does */
 static float closest(float heading, float dir) { return heading + ffr_wrap_pi(dir - heading); }
@@ -231,7 +238,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
 {
     const ffr_config_t *cfg = &st->cfg;
     ffr_room_state_t *r = &st->room;
-    float sig = flame_sum(in);
+    float sig = flame_sum(st, in);
     const float moved = st->odo.dist_mm - r->phase_start_mm;
     /* whether the flame is out is decided on a filtered signal: near the dark
      * level, sensor noise alone crosses flame_out now and then */

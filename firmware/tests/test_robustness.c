@@ -230,8 +230,31 @@ static void flame_beyond_the_door_is_left_alone(void)
     CHECK(r.out.state == FFR_ST_EXTINGUISH);
 }
 
+static void flame_dark_level_is_learned(void)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    int i;
+    ffr_config_default(&cfg);
+    rig_init(&r, &cfg);
+    /* ambient light: each sensor 30 counts above its 40-count dark level, noisy */
+    for (i = 0; i < 400; ++i) {
+        r.in.flame[0] = (uint16_t)(70 + (i % 7) - 3);
+        r.in.flame[1] = (uint16_t)(70 + (i % 5) - 2);
+        tick(&r);
+    }
+    CHECK(r.st.flame_dark > 132.0f && r.st.flame_dark <= 140.0f); /* low by at most the noise */
+    /* a flame coming into view does not raise it */
+    for (i = 0; i < 200; ++i) {
+        r.in.flame[0] = r.in.flame[1] = 900;
+        tick(&r);
+    }
+    CHECK(r.st.flame_dark > 132.0f && r.st.flame_dark <= 140.0f); /* low by at most the noise */
+}
+
 void suite_robustness(void)
 {
+    flame_dark_level_is_learned();
     openings_by_the_rear_ranger();
     far_hits_are_not_the_wall();
     one_ranger_keeps_heading_feedback();
