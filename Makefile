@@ -1,7 +1,9 @@
 # ffr - firmware-in-the-loop test harness for a fire-fighting robot.
 #   make run    set up, build, run the four-room missions (table + pictures)
 #   make test   set up, build, run every test
-#   make bench  real-time factor and per-tick costs
+#   make bench  real-time factor and per-tick costs, sweep throughput (missions/s)
+#   make test-thorough  the property tests with the thorough hypothesis profile
+#   make envelope  success rate per kind and level of sensor noise (docs/robustness.md)
 #   make firmware  host library + Cortex-M4 build (flash/RAM printed)
 
 PYTHON ?= python3
@@ -30,7 +32,7 @@ HOST_CFLAGS := $(CSTD) -O2 -fPIC
 ARM_CFLAGS  := $(CSTD) -Os -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 \
                -ffunction-sections -fdata-sections
 
-.PHONY: all setup run test bench firmware firmware-host firmware-arm firmware-boards firmware-test selftest lint clean wire-test fuzz
+.PHONY: all setup run test test-thorough envelope bench firmware firmware-host firmware-arm firmware-boards firmware-test selftest lint clean wire-test fuzz
 
 all: firmware-host
 
@@ -138,6 +140,12 @@ test: setup firmware-host $(BUILD)/host/ffr_unit_tests $(BUILD)/host/ffr_wire_te
 	$(BUILD)/host/ffr_unit_tests
 	$(BUILD)/host/ffr_wire_tests $(WIRE_VECTORS)
 	$(VENV)/bin/pytest -q
+
+test-thorough: setup firmware-host
+	$(VENV)/bin/pytest -q tests/property --ffr-profile thorough
+
+envelope: setup firmware-host
+	$(PY) -m harness.envelope
 
 run: setup firmware-host
 	@mkdir -p $(OUT)

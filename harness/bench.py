@@ -1,8 +1,10 @@
 """Benchmarks (``make bench``): measured, never asserted.
 
 Prints the real-time factor of full missions with the in-process link
-(simulated seconds per wall-clock second, one core), and the cost of each
-part of one tick: sensors, firmware step, plant.
+(simulated seconds per wall-clock second, one core), the cost of each
+part of one tick: sensors, firmware step, plant, and the sweep throughput:
+``FFR_BENCH_MISSIONS`` (default 1000) missions on all local cores through
+``ffr sweep``'s engine, in missions per second.
 """
 
 from __future__ import annotations
@@ -77,11 +79,33 @@ def bench_parts(n: int = 20000) -> None:
         print(f"  {name:30s} {_best(fn) / n * 1e6:6.2f} us")
 
 
+def bench_sweep(n: int) -> None:
+    import os
+
+    from harness import sweep as sw
+
+    per_room = max(1, n // 4)
+    spec = sw.SweepSpec(candles="random", n_candles=per_room, seeds=(0,), noise="typical")
+    jobs = sw.build_jobs(spec)[:n]
+    sim = 0.0
+    t0 = time.perf_counter()
+    rows = sw.execute(jobs)
+    wall = time.perf_counter() - t0
+    sim = sum(r["sim_time_s"] or 0.0 for r in rows)
+    ok = sum(1 for r in rows if r["success"])
+    print(f"sweep: {len(rows)} missions (random legal candles, typical noise) on {os.cpu_count()} cores "
+          f"in {wall:.1f} s wall, cluster start included = {len(rows) / wall:.1f} missions/s "
+          f"({sim / wall:.0f}x real time; {ok} succeeded)")
+
+
 def main() -> None:
+    import os
+
     from hil_bridge.bench import bench_links
 
     bench_missions()
     bench_parts()
+    bench_sweep(int(os.environ.get("FFR_BENCH_MISSIONS", "1000")))
     bench_links()
 
 

@@ -113,6 +113,8 @@ def build_parser() -> argparse.ArgumentParser:
     where(b2b)
     common(b2b, "qemu:mps2-an386", "the build under test (default qemu:mps2-an386, the Cortex-M4 build on QEMU)")
     b2b.add_argument("--reference", default="ctypes:", help="the reference build (default ctypes:, the host library)")
+    from harness.sweep_cli import add_sweep_parser
+    add_sweep_parser(sub)
     return p
 
 
@@ -244,6 +246,10 @@ def _execute(args: argparse.Namespace) -> int:
 
     if args.command == "b2b":
         return _execute_b2b(args)
+    if args.command == "sweep":
+        from harness.sweep_cli import run_sweep
+        return run_sweep(args)
+
     if args.command == "table1":
         from sim_plant.arena import load_arena
         rooms: list[int | None] = [r.id for r in load_arena(args.arena).rooms]

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
+from harness.events import EventRunner
 from harness.firmware_abi import (
     FAIL_NAMES,
     INPUTS_DTYPE,
@@ -135,6 +136,7 @@ class Mission:
         candle = Candle(scn.candle[0], scn.candle[1], scn.robot, scn.arena)
         rng = np.random.default_rng(scn.seed)
         sensors = SensorSuite(scn.arena, scn.robot, candle, scn.noise, rng)
+        events = EventRunner(scn.events, rng) if scn.events else None
         cfg = build_config(scn.robot, scn.firmware, scn.source)
         link = self.link
         link.reset(cfg)
@@ -166,6 +168,8 @@ class Mission:
             t_ms = k * period_ms
             t = t_ms / 1000.0
             sensors.sample(t, plant.x, plant.y, plant.theta, plant.phi_l, plant.phi_r, hw)
+            if events is not None:
+                events.apply(t, hw)
             _pack(u32, i32, u16, in_bytes, t_ms, k, hw, 1 if k >= start_tick else 0)
             try:
                 if fast is not None:

@@ -7,15 +7,19 @@ validated with one-line errors naming the file, field and value.
 
 from __future__ import annotations
 
+import json
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from sim_plant.arena import Arena, _Reader, load_arena, read_toml
+from harness.events import Event, parse_events
+from sim_plant.arena import DEFAULT_ARENA, Arena, _Reader, load_arena, read_toml
 from sim_plant.errors import FfrInputError
-from sim_plant.robot import RobotParams, load_robot, override
+from sim_plant.robot import DEFAULT_ROBOT, RobotParams, load_robot, override
 from sim_plant.sensors import NoiseProfile, load_noise_profile
+from sim_plant.sensors.noise import profile_from_table, profile_to_table
 
 _TOP_KEYS = {"name", "seed", "noise", "arena", "robot", "candle", "start", "timing", "firmware",
              "robot_overrides", "events", "stop_on_contact"}
@@ -45,7 +49,8 @@ class Scenario:
     robot_overrides: dict[str, Any] = field(default_factory=dict)
     timing: Timing = field(default_factory=Timing)
     stop_on_contact: bool = False
-    events: list[dict[str, Any]] = field(default_factory=list)
+    events: list[Event] = field(default_factory=list)
+    robot_file: str | None = None  # the robot file before robot_overrides (None: the default)
 
 
 def default_start(arena: Arena) -> tuple[float, float, float]:
@@ -59,9 +64,10 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
                   firmware: dict[str, Any] | None = None, robot_overrides: dict[str, Any] | None = None,
                   start: tuple[float, float, float] | None = None, timing: Timing | None = None,
                   name: str | None = None, source: str = "command line",
-                  stop_on_contact: bool = False) -> Scenario:
+                  stop_on_contact: bool = False, events: list[Event] | None = None) -> Scenario:
     arena = arena or load_arena()
     robot = robot or load_robot()
+    robot_file = None if robot.source == str(DEFAULT_ROBOT) else robot.source
     for key, value in (robot_overrides or {}).items():
         robot = override(robot, key, value, source)
     if candle is not None:
@@ -77,7 +83,8 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
         source=source, arena=arena, robot=robot, candle=(float(candle[0]), float(candle[1])),
         room=room_id, start=start or default_start(arena), seed=seed, noise=prof,
         firmware=dict(firmware or {}), robot_overrides=dict(robot_overrides or {}),
-        timing=timing or Timing(), stop_on_contact=stop_on_contact,
+        timing=timing or Timing(), stop_on_contact=stop_on_contact, events=list(events or []),
+        robot_file=robot_file,
     )
 
 
@@ -130,10 +137,12 @@ def load_scenario(path: str | Path, *, seed: int | None = None) -> Scenario:
     file_seed = r.get("seed", 0)
     if isinstance(file_seed, bool) or not isinstance(file_seed, int) or file_seed < 0:
         raise FfrInputError(src, "seed", file_seed, "must be an integer >= 0")
-    noise = r.get("noise", "none")
-    if not isinstance(noise, str):
-        raise FfrInputError(src, "noise", noise, "must be a profile name or file")
-    if noise.endswith(".toml") or "#" in noise:
+    noise: Any = r.get("noise", "none")
+    if isinstance(noise, dict):  # an inline profile: [noise.ir], [noise.flame], ...
+        noise = profile_from_table(noise, src, "noise")
+    elif not isinstance(noise, str):
+        raise FfrInputError(src, "noise", noise, "must be a profile name or file, or a table")
+    elif noise.endswith(".toml") or "#" in noise:
         noise = str(base / noise)
     candle_tab = r.sub("candle") if "candle" in data else _Reader(src, {}, "candle.")
     room = candle_tab.get("room", None)
@@ -157,13 +166,85 @@ def load_scenario(path: str | Path, *, seed: int | None = None) -> Scenario:
     stop = r.get("stop_on_contact", False)
     if not isinstance(stop, bool):
         raise FfrInputError(src, "stop_on_contact", stop, "must be true or false")
-    events = data.get("events", [])
-    if not isinstance(events, list):
-        raise FfrInputError(src, "events", events, "must be an array of tables")
+    events = parse_events(data.get("events", []), src)
     name = r.string("name", p.stem)
-    scn = make_scenario(arena=arena, robot=robot, room=room, candle=candle,
-                        seed=file_seed if seed is None else seed, noise=noise, firmware=fw,
-                        robot_overrides=ro, start=start, timing=timing, name=name, source=src,
-                        stop_on_contact=stop)
-    scn.events = events
-    return scn
+    return make_scenario(arena=arena, robot=robot, room=room, candle=candle,
+                         seed=file_seed if seed is None else seed, noise=noise, firmware=fw,
+                         robot_overrides=ro, start=start, timing=timing, name=name, source=src,
+                         stop_on_contact=stop, events=events)
+
+
+# -- writing -------------------------------------------------------------------
+
+def _toml_value(v: Any) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        if not math.isfinite(v):
+            raise ValueError(f"cannot write {v!r} to TOML")
+        return repr(v)  # shortest text that reads back to the same double
+    if isinstance(v, str):
+        return json.dumps(v)
+    if isinstance(v, list | tuple):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    raise TypeError(f"cannot write {type(v).__name__} to TOML")
+
+
+def _toml_key(k: str) -> str:
+    return k if re.fullmatch(r"[A-Za-z0-9_-]+", k) else json.dumps(k)
+
+
+def _toml_table(lines: list[str], header: str, table: dict[str, Any]) -> None:
+    plain = {k: v for k, v in table.items() if not isinstance(v, dict)}
+    subs = {k: v for k, v in table.items() if isinstance(v, dict)}
+    if plain or not subs:
+        lines += ["", f"[{header}]"] + [f"{_toml_key(k)} = {_toml_value(v)}" for k, v in plain.items()]
+    for k, v in subs.items():
+        _toml_table(lines, f"{header}.{_toml_key(k)}", v)
+
+
+def _degrees_exact(rad: float) -> float:
+    """Degrees that ``math.radians`` turns back into exactly ``rad`` (for a bit-identical replay)."""
+    deg = math.degrees(rad)
+    for direction in (math.inf, -math.inf):
+        d = deg
+        for _ in range(8):
+            if math.radians(d) == rad:
+                return d
+            d = math.nextafter(d, direction)
+    return deg
+
+
+def scenario_to_toml(scn: Scenario, comment: str = "") -> str:
+    """The scenario as a scenario file that ``load_scenario`` reads back to the same mission."""
+    lines = [f"# {c}" for c in comment.splitlines()] if comment else []
+    lines.append(f"name = {_toml_value(scn.name)}")
+    lines.append(f"seed = {scn.seed}")
+    if scn.arena.source != str(DEFAULT_ARENA):
+        lines.append(f"arena = {_toml_value(str(Path(scn.arena.source).resolve()))}")
+    if scn.robot_file:
+        lines.append(f"robot = {_toml_value(str(Path(scn.robot_file).resolve()))}")
+    lines.append(f"stop_on_contact = {_toml_value(scn.stop_on_contact)}")
+    table = profile_to_table(scn.noise)
+    if not table:
+        lines.append('noise = "none"')
+    lines += ["", "[candle]", f"position = {_toml_value([scn.candle[0], scn.candle[1]])}"]
+    lines += ["", "[start]", f"x = {_toml_value(float(scn.start[0]))}", f"y = {_toml_value(float(scn.start[1]))}",
+              f"heading_deg = {_toml_value(_degrees_exact(float(scn.start[2])))}"]
+    tm = scn.timing
+    lines += ["", "[timing]", f"firmware_period_ms = {tm.firmware_period_ms}",
+              f"plant_dt_ms = {_toml_value(float(tm.plant_dt_ms))}",
+              f"find_limit_s = {_toml_value(float(tm.find_limit_s))}",
+              f"return_limit_s = {_toml_value(float(tm.return_limit_s))}",
+              f"start_delay_ms = {tm.start_delay_ms}"]
+    if table:
+        _toml_table(lines, "noise", table)
+    if scn.firmware:
+        _toml_table(lines, "firmware", dict(scn.firmware))
+    if scn.robot_overrides:
+        _toml_table(lines, "robot_overrides", dict(scn.robot_overrides))
+    for ev in scn.events:
+        lines += ["", "[[events]]"] + [f"{k} = {_toml_value(v)}" for k, v in ev.to_table().items()]
+    return "\n".join(lines) + "\n"

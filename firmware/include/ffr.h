@@ -221,14 +221,20 @@ typedef struct {
     uint8_t count;
     float last_edge_mm;            /* odometry distance at the last edge      */
     uint8_t edge;                  /* 1 on the tick of a new line             */
+    uint8_t run;                   /* consecutive ticks reading white         */
 } ffr_line_counter_t;
 
 typedef struct {
     uint8_t seen[2];               /* side wall seen long enough (L, R)       */
     uint8_t opened[2];             /* then it ended: latched for the step     */
+    uint8_t front_saw[2];          /* the front corner ranger saw it this step */
+    uint8_t rear_ok[2];            /* the rear ranger's wall stayed beside     */
+    float rear_lat0_mm[2];         /* its distance to the side when first seen */
     float seen_mm[2];              /* travel with the wall seen               */
     float open_mm[2];              /* travel with the side open               */
+    float rear_open_mm[2];         /* travel with the rear ranger open too    */
     float open_at_mm[2];           /* odometry distance where it opened       */
+    float rear_at_mm[2];           /* where the rear ranger last saw the wall */
     float since_open_mm[2];        /* travel since the side last read open    */
 } ffr_openings_t;
 
@@ -256,6 +262,7 @@ typedef struct {
     float phase_start_mm;
     uint32_t phase_start_ms;
     uint32_t below_since_ms;
+    float flame_f;                 /* flame sum, filtered: is it out?          */
 } ffr_room_state_t;
 
 typedef struct {
@@ -279,6 +286,8 @@ typedef struct {
     uint8_t reserved;
     float cmd_v_mm_s;              /* motion command of this tick             */
     float cmd_w_rad_s;
+    float flame_ema;               /* both flame sensors, slowly filtered     */
+    float flame_dark;              /* the lowest of that: no flame in view    */
 } ffr_state_t;
 
 /* Failure codes in ffr_outputs_t.fail_code. */

@@ -42,6 +42,8 @@ typedef struct {
     float angle_rad;     /* wall direction relative to the heading   */
 } ffr_wall_t;
 ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], int side);
+/* Does ranger i's hit at d_mm lie on a wall beside the robot (not across an opening)? */
+int ffr_hit_beside(const ffr_config_t *cfg, int i, float d_mm);
 /* Yaw rate (rad/s) that brings the robot to wall_target_mm, parallel to the wall. */
 float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side);
 /* Yaw rate (rad/s) that holds heading_ref. */

@@ -45,6 +45,7 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->room.phase_start_mm = 0.0f;
     st->room.phase_start_ms = 0u;
     st->room.below_since_ms = 0u;
+    st->room.flame_f = 0.0f;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         st->ir_mm[i] = FFR_IR_NONE(cfg);
     }
@@ -60,6 +61,8 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->reserved = 0;
     st->cmd_v_mm_s = 0.0f;
     st->cmd_w_rad_s = 0.0f;
+    st->flame_ema = -1.0f; /* not primed */
+    st->flame_dark = 0.0f;
 }
 
 static int16_t clamp_i16(float v)
@@ -87,6 +90,20 @@ void ffr_step(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out)
 
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         st->ir_mm[i] = ffr_ir_mv_to_mm(cfg, in->ir_mv[i]);
+    }
+    /* the flame sensors' dark level (amplifier offset plus ambient light):
+     * the lowest slowly filtered reading so far, most of it read with no
+     * flame in view; room.c measures the flame above it */
+    {
+        float f = (float)in->flame[0] + (float)in->flame[1];
+        if (st->flame_ema < 0.0f) {
+            st->flame_ema = f;
+            st->flame_dark = f;
+        }
+        st->flame_ema += 0.05f * (f - st->flame_ema);
+        if (st->flame_ema < st->flame_dark) {
+            st->flame_dark = st->flame_ema;
+        }
     }
     before = st->odo.dist_mm;
     ffr_odometry_update(&st->odo, cfg, in->enc, dt);

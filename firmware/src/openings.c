@@ -4,8 +4,18 @@
  * corner ranger looks ahead, so where the wall ends is known: its last hit
  * point, ahead of the origin. At a junction the corner rangers end up seeing
  * the junction's own corners, so what they saw on the way in is what counts.
+ *
+ * A step that starts close to the wall's end (just after a turn) may give the
+ * front ranger too little of the wall to see; the rear ranger, looking back
+ * at the wall the robot is passing, counts as seeing it too, and then its
+ * own last hit point (behind the origin) marks the wall's end once it opens.
+ * Only a wall the robot passes along: one whose distance to the side stays
+ * put; a wall across a junction behind the robot recedes and does not count.
  */
 #include "ffr_internal.h"
+
+/* a wall alongside keeps its distance to the side within this, mm */
+#define REAR_LAT_DRIFT_MM 60.0f
 
 void ffr_openings_reset(ffr_openings_t *op)
 {
@@ -13,11 +23,21 @@ void ffr_openings_reset(ffr_openings_t *op)
     for (i = 0; i < 2; ++i) {
         op->seen[i] = 0;
         op->opened[i] = 0;
+        op->front_saw[i] = 0;
+        op->rear_ok[i] = 1;
+        op->rear_lat0_mm[i] = -1.0f;
         op->seen_mm[i] = 0.0f;
         op->open_mm[i] = 0.0f;
+        op->rear_open_mm[i] = 0.0f;
         op->open_at_mm[i] = 0.0f;
+        op->rear_at_mm[i] = 0.0f;
         op->since_open_mm[i] = 1.0e9f; /* never, in this step */
     }
+}
+
+static float hit_ahead(const ffr_config_t *cfg, int i, float d)
+{
+    return cfg->ir_x_mm[i] + d * ffr_cosf(cfg->ir_angle_deg[i] * FFR_DEG);
 }
 
 void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT],
@@ -26,25 +46,52 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const floa
     int side;
     for (side = 0; side < 2; ++side) {
         int f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
+        int r = side == FFR_SIDE_LEFT ? FFR_IR_LR : FFR_IR_RR;
         float d = ir_mm[f];
-        if (d < cfg->open_mm) {
+        float dr = ir_mm[r];
+        /* a wall beside the robot, not one across an opening (wall_follow.c) */
+        int front = ffr_hit_beside(cfg, f, d);
+        int rear = ffr_hit_beside(cfg, r, dr);
+        if (rear) {
+            float lat = ffr_absf(cfg->ir_y_mm[r] + dr * ffr_sinf(cfg->ir_angle_deg[r] * FFR_DEG));
+            if (op->rear_lat0_mm[side] < 0.0f) {
+                op->rear_lat0_mm[side] = lat;
+            } else if (ffr_absf(lat - op->rear_lat0_mm[side]) > REAR_LAT_DRIFT_MM) {
+                op->rear_ok[side] = 0; /* not a wall alongside: for good, this step */
+            }
+            op->rear_open_mm[side] = 0.0f;
+            op->rear_at_mm[side] = dist_mm + hit_ahead(cfg, r, dr);
+        } else {
+            op->rear_open_mm[side] += step_mm;
+        }
+        rear = rear && op->rear_ok[side];
+        if (front || rear) {
             op->seen_mm[side] += step_mm;
             if (op->seen_mm[side] >= cfg->wall_seen_mm) {
                 op->seen[side] = 1;
             }
+        } else if (!op->seen[side]) {
+            op->seen_mm[side] = 0.0f;
+        }
+        if (front) {
+            op->front_saw[side] = 1;
             op->open_mm[side] = 0.0f;
             op->since_open_mm[side] += step_mm;
             if (!op->opened[side]) {
                 /* where the wall ends if the next reading is open: the hit point ahead */
-                op->open_at_mm[side] = dist_mm + cfg->ir_x_mm[f] + d * ffr_cosf(cfg->ir_angle_deg[f] * FFR_DEG);
+                op->open_at_mm[side] = dist_mm + hit_ahead(cfg, f, d);
             }
         } else {
             op->open_mm[side] += step_mm;
             op->since_open_mm[side] = 0.0f;
-            if (!op->seen[side]) {
-                op->seen_mm[side] = 0.0f;
-            } else if (op->open_mm[side] >= cfg->open_confirm_mm) {
-                op->opened[side] = 1;
+            if (op->seen[side] && !op->opened[side] && op->open_mm[side] >= cfg->open_confirm_mm) {
+                if (op->front_saw[side]) {
+                    op->opened[side] = 1;
+                } else if (op->rear_ok[side] && op->rear_open_mm[side] >= cfg->open_confirm_mm) {
+                    /* only the rear ranger saw the wall: it ended where that one last hit it */
+                    op->opened[side] = 1;
+                    op->open_at_mm[side] = op->rear_at_mm[side];
+                }
             }
         }
     }

@@ -27,7 +27,24 @@ enum {
     RP_LEAVE_OUT
 };
 
-static float flame_sum(const ffr_inputs_t *in) { return (float)in->flame[0] + (float)in->flame[1]; }
+/* A flame within the fans' reach reads far above the detection threshold:
+ * on axis at 30 cm about 20x, at the edge of the sensors' view still ~8x. */
+#define FLAME_NEAR 4.0f
+/* share of each new flame reading in the filtered signal (a ~40 ms average) */
+#define FLAME_FILTER 0.25f
+/* contest lines are 2.5 cm wide, walls about 2 cm thick */
+#define DOOR_WALL_FACE_MM 25.0f
+/* clearance kept beyond the body's corner radius for the scan's turn in place */
+#define SCAN_MARGIN_MM 35.0f
+
+/* flame_detect and flame_out are set for this dark level (2 x 40 counts) */
+#define FLAME_DARK_NOMINAL 80.0f
+
+/* both flame sensors, measured from the dark level learned so far (mission.c) */
+static float flame_sum(const ffr_state_t *st, const ffr_inputs_t *in)
+{
+    return (float)in->flame[0] + (float)in->flame[1] - (st->flame_dark - FLAME_DARK_NOMINAL);
+}
 
 /* the unwrapped heading closest to `heading` that points the way `dir` does */
 static float closest(float heading, float dir) { return heading + ffr_wrap_pi(dir - heading); }
@@ -57,6 +74,7 @@ void ffr_room_begin(ffr_state_t *st, uint8_t room)
     st->room.attempts = 0;
     st->room.flame_found = 0;
     st->room.below_since_ms = 0;
+    st->room.flame_f = 0.0f;
     st->room.entry_heading_rad = st->route.heading_ref_rad;
     phase(st, RP_ENTER_LINE);
 }
@@ -99,6 +117,61 @@ static int through_door(const ffr_state_t *st, float dir)
     return ffr_absf(lat) < st->cfg.hallway_half_mm;
 }
 
+/* A body-frame point relative to where the doorway line was crossed: depth
+ * into the room (along the entry heading) and lateral offset, mm. */
+static float depth_in(const ffr_state_t *st, float bx, float by, float *lateral)
+{
+    const ffr_room_state_t *r = &st->room;
+    float c = ffr_cosf(st->odo.heading_rad);
+    float s = ffr_sinf(st->odo.heading_rad);
+    float dx = st->odo.x_mm + c * bx - s * by - r->line_x_mm;
+    float dy = st->odo.y_mm + s * bx + c * by - r->line_y_mm;
+    float ce = ffr_cosf(r->entry_heading_rad);
+    float se = ffr_sinf(r->entry_heading_rad);
+    if (lateral) {
+        *lateral = -dx * se + dy * ce;
+    }
+    return dx * ce + dy * se;
+}
+
+/* Is the robot's nose at the doorway it came in by (its line, or about to
+ * reach it)? Approaching a flame, that means the flame is out there. */
+static int nose_in_doorway(const ffr_state_t *st)
+{
+    float lat;
+    float depth = depth_in(st, st->cfg.line_sensor_x_mm, 0.0f, &lat);
+    return depth < 60.0f && ffr_absf(lat) < st->cfg.hallway_half_mm;
+}
+
+/*
+ * The wall the door is in: the robot crossed its doorway line, so odometry
+ * knows where that wall runs (through the crossing, square to the entry
+ * heading). A candle by that wall is approached along it, and the door's jamb
+ * is a thin wall end the rangers may not see: stop before a front corner
+ * reaches the wall's line, as if it were seen. Only a stop, no steering: the
+ * approach stays aimed at the flame, so the fans reach it from there.
+ * Odometry inside one room is short and reliable, hence half the rangers'
+ * margin.
+ */
+static void door_wall_guard(const ffr_state_t *st, int *stop)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    /* only by the door: farther along, the wall is a wall the rangers see, and
+     * the odometry heading's error (a few degrees after a scan) grows with the
+     * distance from the crossing point */
+    const float reach = cfg->hallway_half_mm + cfg->guard_side_mm;
+    int k;
+    for (k = 0; k < 2; ++k) {
+        float lat;
+        float d = depth_in(st, cfg->body_front_mm, k ? cfg->body_half_width_mm : -cfg->body_half_width_mm, &lat);
+        /* the doorway line lies on the wall's centre line and is first seen at
+         * its near edge: the wall's room-side face is about a line width deeper */
+        if (ffr_absf(lat) < reach && d < DOOR_WALL_FACE_MM + 0.5f * cfg->guard_stop_mm) {
+            *stop = 1;
+        }
+    }
+}
+
 /*
  * Approach guard: the rangers' hit points near the body. Returns a yaw rate
  * that steers away from a wall beside the front half, and sets *stop when a
@@ -134,15 +207,42 @@ static float approach_guard(const ffr_state_t *st, int *stop)
             }
         }
     }
+    door_wall_guard(st, stop);
     return w;
+}
+
+/*
+ * The scan turns in place, sweeping a circle of the body's corner radius: a
+ * robot that came through the door off-centre and has a side wall closer
+ * than that edges away from it while it drives in (a heading offset, so the
+ * heading hold still applies).
+ */
+static float scan_room_offset(const ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    float need = ffr_sqrtf(cfg->body_front_mm * cfg->body_front_mm + cfg->body_half_width_mm * cfg->body_half_width_mm)
+                 + SCAN_MARGIN_MM;
+    float off = 0.0f;
+    int side;
+    for (side = 0; side < 2; ++side) {
+        ffr_wall_t w = ffr_wall_estimate(cfg, st->ir_mm, side);
+        if (w.valid && w.dist_mm < need) {
+            /* left wall: turn right (negative), and the other way round */
+            off += (side == FFR_SIDE_LEFT ? -1.0f : 1.0f) * (need - w.dist_mm) * 0.5f * FFR_DEG;
+        }
+    }
+    return ffr_clampf(off, -20.0f * FFR_DEG, 20.0f * FFR_DEG);
 }
 
 int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
 {
     const ffr_config_t *cfg = &st->cfg;
     ffr_room_state_t *r = &st->room;
-    float sig = flame_sum(in);
+    float sig = flame_sum(st, in);
     const float moved = st->odo.dist_mm - r->phase_start_mm;
+    /* whether the flame is out is decided on a filtered signal: near the dark
+     * level, sensor noise alone crosses flame_out now and then */
+    r->flame_f += FLAME_FILTER * (sig - r->flame_f);
     const uint32_t elapsed = st->t_ms - r->phase_start_ms;
 
     switch (r->phase) {
@@ -170,7 +270,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
             begin_scan(st);
             return 0;
         }
-        ffr_drive_heading(st, r->entry_heading_rad,
+        ffr_drive_heading(st, r->entry_heading_rad + scan_room_offset(st),
                           ffr_clampf(2.0f * (cfg->room_entry_mm - moved) + 60.0f, 60.0f, cfg->room_speed_mm_s));
         return 0;
     case RP_SCAN: {
@@ -217,6 +317,14 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         float guard_w = approach_guard(st, &guard_stop);
         if (st->lines.edge || guard_stop || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
             ffr_stop(st);
+            if (nose_in_doorway(st) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
+                /* at the doorway it came in by, or stopped by a wall with the
+                 * flame still far: the flame is not in this room but seen
+                 * through its door. Back out and search on. */
+                r->flame_found = 0;
+                phase(st, RP_BACK_DRIVE);
+                return 0;
+            }
             phase(st, RP_EXTINGUISH);
             return 0;
         }
@@ -235,7 +343,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
     case RP_EXTINGUISH:
         ffr_stop(st);
         st->fan = 1;
-        if (sig < cfg->flame_out) {
+        if (r->flame_f < cfg->flame_out) {
             if (r->below_since_ms == 0u) {
                 r->below_since_ms = st->t_ms == 0u ? 1u : st->t_ms;
             }
@@ -258,7 +366,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
     case RP_VERIFY:
         ffr_stop(st);
         st->fan = 0;
-        if (sig >= cfg->flame_out) {
+        if (r->flame_f >= cfg->flame_out) {
             r->below_since_ms = 0u;
             r->attempts = (uint8_t)(r->attempts + 1u);
             if (r->attempts >= cfg->fan_attempts) {

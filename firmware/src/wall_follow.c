@@ -14,6 +14,23 @@ static void hit_point(const ffr_config_t *cfg, int i, float d, float *px, float 
     *py = cfg->ir_y_mm[i] + d * ffr_sinf(a);
 }
 
+/*
+ * A hit farther to the side than halfway from the wanted wall distance to
+ * open_mm is across an opening (a hallway's far wall), not the wall beside
+ * the robot. Halfway keeps the two apart for every GP2D12 within its
+ * datasheet limits: a wall at the wanted distance reads at most ~30 % long,
+ * a hallway's far wall at least ~25 % short.
+ */
+int ffr_hit_beside(const ffr_config_t *cfg, int i, float d_mm)
+{
+    float px, py;
+    if (!ffr_ir_valid(cfg, d_mm)) {
+        return 0;
+    }
+    hit_point(cfg, i, d_mm, &px, &py);
+    return ffr_absf(py) < 0.5f * (cfg->wall_target_mm + cfg->open_mm);
+}
+
 ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], int side)
 {
     ffr_wall_t w;
@@ -28,9 +45,11 @@ ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_C
     w.angle_rad = 0.0f;
     if (fv) {
         hit_point(cfg, f, ir_mm[f], &fx, &fy);
+        fv = ffr_hit_beside(cfg, f, ir_mm[f]);
     }
     if (rv) {
         hit_point(cfg, r, ir_mm[r], &rx, &ry);
+        rv = ffr_hit_beside(cfg, r, ir_mm[r]);
     }
     if (fv && rv) {
         float wx = fx - rx;
@@ -74,8 +93,11 @@ float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side
     /* wanted heading relative to the wall: toward it when too far */
     float sign = side == FFR_SIDE_LEFT ? 1.0f : -1.0f;
     float lim = cfg->turn_rate_deg_s * FFR_DEG;
+    /* one ranger's distance (no wall angle) is the least sure: steer by it gently,
+     * so a part that reads long or short does not swing the robot off the wall */
+    float max_deg = w->angle_valid ? cfg->wall_max_deg : 0.4f * cfg->wall_max_deg;
     float want = ffr_clampf(cfg->wall_kp_deg_per_mm * (w->dist_mm - cfg->wall_target_mm),
-                            -cfg->wall_max_deg, cfg->wall_max_deg) * FFR_DEG * sign;
+                            -max_deg, max_deg) * FFR_DEG * sign;
     /* the robot's heading relative to the wall is -angle */
     float err = want + w->angle_rad;
     return ffr_clampf(cfg->heading_kp * err, -lim, lim);

@@ -14,6 +14,7 @@ int main(void)
     suite_openings();
     suite_mission();
     suite_layout();
+    suite_robustness();
     printf("firmware: %d passed, %d failed\n", unit_tally.passed, unit_tally.failed);
     return unit_tally.failed == 0 ? 0 : 1;
 }

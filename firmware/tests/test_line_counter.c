@@ -19,11 +19,30 @@ void suite_line_counter(void)
     CHECK(l.count == 2);
     /* a flicker inside the hold-off is the same line */
     ffr_lines_reset(&l);
-    ffr_lines_update(&l, &cfg, 1, 0.0f);
+    for (i = 0; i < 3; ++i) {
+        ffr_lines_update(&l, &cfg, 1, (float)i);
+    }
+    CHECK(l.count == 1);
     ffr_lines_update(&l, &cfg, 0, 5.0f);
-    ffr_lines_update(&l, &cfg, 1, 10.0f);
+    for (i = 0; i < 3; ++i) {
+        ffr_lines_update(&l, &cfg, 1, 10.0f + (float)i);
+    }
     CHECK(l.count == 1);
     CHECK(l.edge == 0);
+    /* a misread of one or two ticks is no line at all */
+    ffr_lines_reset(&l);
+    ffr_lines_update(&l, &cfg, 1, 0.0f);
+    ffr_lines_update(&l, &cfg, 0, 3.0f);
+    ffr_lines_update(&l, &cfg, 1, 100.0f);
+    ffr_lines_update(&l, &cfg, 1, 103.0f);
+    ffr_lines_update(&l, &cfg, 0, 106.0f);
+    CHECK(l.count == 0);
+    /* the third white tick in a row is the edge */
+    ffr_lines_update(&l, &cfg, 1, 200.0f);
+    ffr_lines_update(&l, &cfg, 1, 203.0f);
+    CHECK(l.count == 0);
+    ffr_lines_update(&l, &cfg, 1, 206.0f);
+    CHECK(l.count == 1 && l.edge == 1);
     /* standing on a line: one edge only */
     ffr_lines_reset(&l);
     for (i = 0; i < 10; ++i) {

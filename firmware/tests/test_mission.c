@@ -140,6 +140,8 @@ static void room_task(void)
     r.in.line = 1;
     tick(&r);
     tick(&r);
+    tick(&r);
+    tick(&r);
     r.in.line = 0;
     CHECK((r.out.flags & FFR_FLAG_IN_ROOM) != 0);
     CHECK(run_until_state(&r, FFR_ST_SCAN, 400));
@@ -173,6 +175,8 @@ static void room_task(void)
     /* the candle circle: stop, fans on */
     r.in.line = 1;
     tick(&r);
+    tick(&r);
+    tick(&r);
     r.in.line = 0;
     tick(&r);
     CHECK(r.out.state == FFR_ST_EXTINGUISH);
@@ -193,6 +197,8 @@ static void room_task(void)
     CHECK(r.out.state == FFR_ST_EXIT);
     r.in.line = 1;
     tick(&r);
+    tick(&r);
+    tick(&r);
     r.in.line = 0;
     CHECK((r.out.flags & FFR_FLAG_IN_ROOM) == 0);
     CHECK(run_until_state(&r, FFR_ST_HOMING, 400));
@@ -202,6 +208,8 @@ static void room_task(void)
         tick(&r);
     }
     r.in.line = 1;
+    tick(&r);
+    tick(&r);
     tick(&r);
     r.in.line = 0;
     CHECK(run_until_state(&r, FFR_ST_DONE, 400));
@@ -224,6 +232,8 @@ static void no_flame_anywhere(void)
     tick(&r);
     r.in.line = 1;
     tick(&r);
+    tick(&r);
+    tick(&r);
     r.in.line = 0;
     CHECK(run_until_state(&r, FFR_ST_SCAN, 400));
     /* a full turn with no flame: leave the room */
@@ -231,6 +241,8 @@ static void no_flame_anywhere(void)
     CHECK((r.out.flags & FFR_FLAG_FLAME_SEEN) == 0);
     CHECK(run_until_driving(&r, 400));
     r.in.line = 1;
+    tick(&r);
+    tick(&r);
     tick(&r);
     r.in.line = 0;
     CHECK(run_until_state(&r, FFR_ST_FAILED, 400));

@@ -42,4 +42,5 @@ void suite_line_counter(void);
 void suite_openings(void);
 void suite_mission(void);
 void suite_layout(void);
+void suite_robustness(void);
 #endif

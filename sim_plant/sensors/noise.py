@@ -14,6 +14,14 @@ Per channel group:
   ``"hold"`` keeps the previous output. IR noise is drawn once per GP2D12
   measurement (the part's output is held between measurements), flame noise
   every tick.
+  Unit-to-unit spread (``unit_gain_spread``, ``unit_offset_spread``,
+  ``unit_pivot``): each part's own calibration, drawn once per mission and
+  per sensor, uniformly: reading = pivot + g*(clean - pivot) + o with
+  g in 1 ± unit_gain_spread and o in ± unit_offset_spread. For the GP2D12
+  with the pivot at its 80 cm output this is the datasheet's statement
+  directly: output at 80 cm 0.25-0.55 V (offset), swing 80->10 cm
+  1.75-2.25 V (gain). The draws come from the same Generator, after the
+  first noise block, and only when a spread is set.
 * ``line``: ``flip_prob``, probability per tick that the bit reads inverted.
 * ``encoder``: ``slip_prob``, probability per tick and wheel that the
   encoder misses ``slip_fraction`` of that tick's rotation (counts lost for good).
@@ -66,11 +74,31 @@ class AnalogNoise:
     dropout_mode: str = "zero"  # "zero": lost reading reads 0; "hold": previous output kept
     spike_prob: float = 0.0  # probability of a spike
     spike_amp: float = 0.0  # spike size, same unit, sign random
+    unit_gain_spread: float = 0.0  # per-part gain drawn once in 1 ± this (uniform)
+    unit_offset_spread: float = 0.0  # per-part offset drawn once in ± this (uniform), same unit
+    unit_pivot: float = 0.0  # the reading the gain scales about, same unit
 
     @property
     def enabled(self) -> bool:
         return any((self.sigma, self.bias, self.quant_step, self.dropout_prob,
-                    self.spike_prob and self.spike_amp))
+                    self.spike_prob and self.spike_amp)) or self.unit_spread
+
+    @property
+    def unit_spread(self) -> bool:
+        return self.unit_gain_spread > 0.0 or self.unit_offset_spread > 0.0
+
+    def draw_units(self, n: int, rng: np.random.Generator | None) -> np.ndarray:
+        """(n, 2) per-part (gain, offset); identity (1, 0) without a spread, and then no draw."""
+        out = np.zeros((n, 2))
+        out[:, 0] = 1.0
+        if not self.unit_spread:
+            return out
+        if rng is None:
+            raise ValueError("a unit spread is set but no numpy.random.Generator was given")
+        u = rng.random((n, 2))
+        out[:, 0] = 1.0 + self.unit_gain_spread * (2.0 * u[:, 0] - 1.0)
+        out[:, 1] = self.unit_offset_spread * (2.0 * u[:, 1] - 1.0)
+        return out
 
 
 @dataclass(frozen=True)
@@ -127,7 +155,7 @@ class NoiseProfile:
 # -- loading ---------------------------------------------------------------
 
 _PROB_FIELDS = {"dropout_prob", "spike_prob", "flip_prob", "slip_prob", "slip_fraction"}
-_NONNEG_FIELDS = {"sigma", "quant_step", "spike_amp"}
+_NONNEG_FIELDS = {"sigma", "quant_step", "spike_amp", "unit_offset_spread"}
 _GROUPS: dict[str, type] = {"ir": AnalogNoise, "flame": AnalogNoise, "line": LineNoise,
                             "encoder": EncoderNoise}
 
@@ -153,6 +181,8 @@ def _group(src: str, prefix: str, cls: type, table: Any) -> Any:
         if key in _NONNEG_FIELDS and v < 0.0:
             raise FfrInputError(src, fname, v, "must be >= 0")
         kwargs[key] = float(v)
+    if "unit_gain_spread" in kwargs and not 0.0 <= kwargs["unit_gain_spread"] < 1.0:
+        raise FfrInputError(src, f"{prefix}.unit_gain_spread", kwargs["unit_gain_spread"], "must be in [0, 1)")
     g = cls(**kwargs)
     if isinstance(g, AnalogNoise) and g.dropout_prob + g.spike_prob > 1.0:
         raise FfrInputError(src, f"{prefix}.spike_prob", g.spike_prob,
@@ -175,6 +205,23 @@ def _profile(src: str, name: str, table: Any) -> NoiseProfile:
             raise FfrInputError(src, f"{name}.{key}", v,
                                 f"unknown field (known: description, {', '.join(_GROUPS)})")
     return NoiseProfile(name=name, source=src, **kwargs)
+
+
+def profile_from_table(table: Any, source: str, name: str = "inline") -> NoiseProfile:
+    """A profile from one TOML table (e.g. a scenario's inline ``[noise]``)."""
+    return _profile(source, name, table)
+
+
+def profile_to_table(prof: NoiseProfile) -> dict[str, Any]:
+    """The profile as a TOML-ready table, only the fields that differ from 'off'."""
+    out: dict[str, Any] = {}
+    for gname in _GROUPS:
+        g = getattr(prof, gname)
+        d = {f.name: getattr(g, f.name) for f in dataclasses.fields(g)
+             if getattr(g, f.name) != f.default}
+        if d:
+            out[gname] = d
+    return out
 
 
 def load_noise_profile(name_or_path: str | Path = "none") -> NoiseProfile:

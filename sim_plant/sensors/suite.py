@@ -45,15 +45,15 @@ from sim_plant.sensors.noise import (
 
 _T_EPS = 1e-9  # s, a measurement due "at" a tick time is taken at that tick
 
-# ir_cfg columns
-_BX, _BY, _CA, _SA, _PHASE = range(5)
+# ir_cfg columns: pose, phase, and the part's own gain and offset (unit spread)
+_BX, _BY, _CA, _SA, _PHASE, _UG, _UO = range(7)
 # ir_state columns
 _K, _HELD, _DIST, _CLEAN = range(4)
 # cfg entries
 (C_PERIOD, C_MAX_RANGE, C_FX, C_FY, C_FZ, C_AIM, C_HALF, C_RMIN, C_GAIN, C_DARK, C_FULL,
  C_CX, C_CY, C_CZ, C_LX, C_LY, C_HALFW, C_RHO, C_THRESH, C_HX, C_HY, C_HR, C_CR,
- C_TPR) = range(24)
-N_CFG = 24
+ C_TPR, C_UNIT_IR, C_IR_PIVOT, C_UNIT_FL, C_FL_PIVOT, C_FG_L, C_FG_R, C_FO_L, C_FO_R) = range(32)
+N_CFG = 32
 # st entries: state and diagnostics
 (S_INIT, S_T0, S_PHI_L, S_PHI_R, S_SLIP_L, S_SLIP_R, S_FLAME_PREV_L, S_FLAME_PREV_R,
  S_FC_L, S_FC_R, S_LINE_FRAC) = range(11)
@@ -108,6 +108,9 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
             mv = mv_of_distance(d)
             ir_state[i, _DIST] = d
             ir_state[i, _CLEAN] = mv
+            if cfg[C_UNIT_IR] != 0.0:
+                pv = cfg[C_IR_PIVOT]
+                mv = pv + ir_cfg[i, _UG] * (mv - pv) + ir_cfg[i, _UO]
             if noisy:
                 mv = apply_analog(mv, npar, IR_BASE, normals, uniforms, npos, ir_state[i, _HELD])
             ir_state[i, _HELD] = min(max(_round(mv), 0.0), IR_MV_MAX)
@@ -126,6 +129,9 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
                                  edges, cfg[C_HALF], cfg[C_RMIN])
         st[S_FC_L + j] = fc
         v = cfg[C_GAIN] * fc + cfg[C_DARK]
+        if cfg[C_UNIT_FL] != 0.0:
+            pv = cfg[C_FL_PIVOT]
+            v = pv + cfg[C_FG_L + j] * (v - pv) + cfg[C_FO_L + j]
         if noisy:
             v = apply_analog(v, npar, FLAME_BASE, normals, uniforms, npos, st[S_FLAME_PREV_L + j])
         v = min(max(_round(v), 0.0), cfg[C_FULL])
@@ -184,7 +190,7 @@ class SensorSuite:
         phases = self.ir_model.phases(len(IR_NAMES))
         self._ir_cfg = np.array(
             [[robot.ir[n].x, robot.ir[n].y, math.cos(math.radians(robot.ir[n].angle_deg)),
-              math.sin(math.radians(robot.ir[n].angle_deg)), phases[i]]
+              math.sin(math.radians(robot.ir[n].angle_deg)), phases[i], 1.0, 0.0]
              for i, n in enumerate(IR_NAMES)], dtype=np.float64)
         self._ir_state = np.zeros((len(IR_NAMES), 4))
         fm = self.flame_model
@@ -212,6 +218,17 @@ class SensorSuite:
         self._cfg = cfg
         self._st = np.zeros(N_ST)
         self._stream = NoiseStream(rng, self.noise.enabled)
+        # each part's own calibration, drawn once (after the first noise block)
+        ir_units = self.noise.ir.draw_units(len(IR_NAMES), rng)
+        fl_units = self.noise.flame.draw_units(2, rng)
+        self._ir_cfg[:, _UG:_UO + 1] = ir_units
+        cfg[C_UNIT_IR] = 1.0 if self.noise.ir.unit_spread else 0.0
+        cfg[C_IR_PIVOT] = self.noise.ir.unit_pivot
+        cfg[C_UNIT_FL] = 1.0 if self.noise.flame.unit_spread else 0.0
+        cfg[C_FL_PIVOT] = self.noise.flame.unit_pivot
+        cfg[C_FG_L], cfg[C_FG_R] = fl_units[:, 0]
+        cfg[C_FO_L], cfg[C_FO_R] = fl_units[:, 1]
+        self.units = {"ir": ir_units, "flame": fl_units}
         self._args = (self._ir_cfg, self._ir_state, cfg, self._st, arena.wall_edges,
                       arena.wall_polys, door_segments(arena), self.noise.packed(),
                       self._stream.normals, self._stream.uniforms, self._stream.pos)

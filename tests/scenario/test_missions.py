@@ -4,6 +4,11 @@ For every room, three legal candle positions (the room's far corner, the
 arena file's default, among them), default robot, no noise: flame out, robot
 home, no wall touched, within the contest's limits. And the times beside the
 paper's Table 1.
+
+The missions go through the ``ffr_mission`` fixture of the ffr pytest plugin,
+so ``pytest tests/scenario --ffr-link URL`` runs them over any firmware link
+(and ``--ffr-noise``, ``--ffr-seed``, ``--ffr-set`` vary them); each mission's
+metrics land in the JUnit report, and a failure prints its ``ffr run`` replay.
 """
 
 from __future__ import annotations
@@ -13,7 +18,6 @@ from pathlib import Path
 import pytest
 
 from harness.cli import PAPER_TABLE1
-from harness.loop import run_mission
 from harness.scenario import make_scenario
 from sim_plant.arena import load_arena
 
@@ -31,10 +35,10 @@ CASES = [(room, c) for room, cs in CANDLES.items() for c in cs]
 
 @pytest.mark.parametrize(("room", "candle"), CASES,
                          ids=[f"room{r}-{'corner' if c is None else c}" for r, c in CASES])
-def test_mission_succeeds(room: int, candle) -> None:
+def test_mission_succeeds(ffr_mission, room: int, candle) -> None:
     scn = make_scenario(room=room) if candle is None else make_scenario(candle=candle)
     assert scn.room == room
-    res, trace = run_mission(scn)
+    res, trace = ffr_mission(scn)
     assert res.outcome == "home", res.detail
     assert res.wall_contacts == 0
     assert res.min_wall_clearance_m > 0.0
@@ -49,16 +53,16 @@ def test_mission_succeeds(room: int, candle) -> None:
 
 
 @pytest.mark.parametrize("room", [1, 2, 3, 4])
-def test_faster_than_the_paper(room: int) -> None:
-    res, _ = run_mission(make_scenario(room=room), record=False)
+def test_faster_than_the_paper(ffr_mission, room: int) -> None:
+    res, _ = ffr_mission(make_scenario(room=room), record=False)
     paper_out, paper_home = PAPER_TABLE1[room]
     assert res.outcome == "home"
     assert res.time_to_extinguish_s < paper_out
     assert res.total_time_s < paper_home
 
 
-def test_times_grow_with_the_room_number() -> None:
-    outs = [run_mission(make_scenario(room=r), record=False)[0].time_to_extinguish_s for r in (1, 2, 3, 4)]
+def test_times_grow_with_the_room_number(ffr_mission) -> None:
+    outs = [ffr_mission(make_scenario(room=r), record=False)[0].time_to_extinguish_s for r in (1, 2, 3, 4)]
     assert outs == sorted(outs)
 
 
@@ -66,12 +70,12 @@ DOORS_MOVED = Path(__file__).parent / "data" / "arena_doors_moved.toml"
 
 
 @pytest.mark.parametrize("room", [1, 2, 3, 4])
-def test_doors_moved_along_their_walls(room: int) -> None:
+def test_doors_moved_along_their_walls(ffr_mission, room: int) -> None:
     """The firmware navigates by its sensors, not stored coordinates: with the
     doors of rooms 1 and 2 moved along their walls (later contest rules do
     that), the same firmware and route still find every room."""
     arena = load_arena(DOORS_MOVED)
     assert arena.room(1).door != load_arena().room(1).door
-    res, _ = run_mission(make_scenario(arena=arena, room=room), record=False)
+    res, _ = ffr_mission(make_scenario(arena=arena, room=room), record=False)
     assert res.outcome == "home", res.detail
     assert res.wall_contacts == 0

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -179,3 +180,45 @@ def test_blocks_refill_during_a_run(arena, robot, monkeypatch):
     run(make(arena, robot, load_noise_profile("typical"), np.random.default_rng(3)))
     assert len(refills) >= 3  # the initial fill and at least two of BLOCK draws each
     assert BLOCK == 4096
+
+
+def test_datasheet_unit_spread_stays_within_the_datasheet_limits(arena, robot):
+    """Each GP2D12 gets its own gain and offset, drawn once: output at 80 cm within 0.25-0.55 V
+    around the typical 0.40 V (our curve: 0.42 V) and swing 80->10 cm within 1.75-2.25 V."""
+    prof = load_noise_profile("datasheet")
+    v80, v10 = float(distance_to_mv(0.80)), float(distance_to_mv(0.10))
+    gains, offsets = [], []
+    for seed in range(200):
+        units = prof.ir.draw_units(5, np.random.default_rng(seed))
+        for g, o in units:
+            out80 = prof.ir.unit_pivot + g * (v80 - prof.ir.unit_pivot) + o
+            out10 = prof.ir.unit_pivot + g * (v10 - prof.ir.unit_pivot) + o
+            assert 420 - 150 - 1e-9 <= out80 <= 420 + 150 + 1e-9
+            assert 0.875 * (v10 - v80) - 1e-9 <= out10 - out80 <= 1.125 * (v10 - v80) + 1e-9
+            gains.append(g)
+            offsets.append(o)
+    # the draws cover the limits, not just the middle
+    assert min(gains) < 0.89 and max(gains) > 1.11 and min(offsets) < -140 and max(offsets) > 140
+
+
+def test_unit_spread_is_drawn_once_per_suite_and_shifts_readings(arena, robot):
+    prof = NoiseProfile(name="u", ir=dataclasses.replace(NoiseProfile().ir, unit_offset_spread=100.0))
+    a = make(arena, robot, prof, np.random.default_rng(1))
+    b = make(arena, robot, prof, np.random.default_rng(1))
+    c = make(arena, robot, prof, np.random.default_rng(2))
+    assert np.array_equal(a.units["ir"], b.units["ir"]) and not np.array_equal(a.units["ir"], c.units["ir"])
+    clean = run(make(arena, robot, NoiseProfile(), None), n=200)
+    shifted = run(a, n=200)
+    off = a.units["ir"][:, 1]
+    for i in range(5):
+        d = shifted[:, CH_IR[i]] - clean[:, CH_IR[i]]
+        # a constant offset (rounded to whole mV), except where clipped at 0 V
+        assert np.all(np.abs(d[clean[:, CH_IR[i]] > 200] - off[i]) <= 1.0)
+
+
+def test_unit_spread_profile_validation(tmp_path):
+    path = tmp_path / "u.toml"
+    path.write_text("[u.ir]\nunit_gain_spread = 1.5\n")
+    with pytest.raises(FfrInputError) as exc:
+        load_noise_profile(path)
+    assert "u.ir.unit_gain_spread" in str(exc.value)

@@ -1,0 +1,167 @@
+"""Scenario events: faults that start at a given time, on one sensor or wheel.
+
+A scenario's ``[[events]]`` say "the right-front ranger dies at 30 s" or "the
+left wheel slips by 30 % from 12 s for 4 s". They act on the sensor path:
+after ``SensorSuite.sample`` has written the tick's hardware units and before
+the firmware sees them, so the plant stays true and only what the firmware
+reads changes. Faults:
+
+* ``dead``: the sensor reads ``value`` (default 0: a GP2D12 or flame sensor
+  with its output at 0 V, the line sensor dark, an encoder that stops counting).
+* ``stuck``: the sensor keeps the reading it had when the fault began.
+* ``noisy``: gaussian noise of ``sigma`` (the sensor's unit) is added.
+* ``slip`` (``wheel.L`` / ``wheel.R``): the track slips on the floor, so the
+  encoder counts ``1 / (1 - fraction)`` times the rotation that moved the
+  robot: the firmware's odometry over-estimates that wheel's travel.
+
+Every event lasts ``duration_s`` (default: to the end). Noisy events draw
+from the mission's one ``numpy.random.Generator``, in tick order.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from sim_plant.errors import FfrInputError
+from sim_plant.robot import IR_NAMES
+from sim_plant.sensors.channels import CH_ENC_L, CH_ENC_R, CH_FLAME_L, CH_FLAME_R, CH_IR, CH_LINE
+
+CHANNELS: dict[str, int] = {f"ir.{n}": CH_IR[i] for i, n in enumerate(IR_NAMES)}
+CHANNELS |= {"flame.L": CH_FLAME_L, "flame.R": CH_FLAME_R, "line": CH_LINE,
+             "encoder.L": CH_ENC_L, "encoder.R": CH_ENC_R}
+WHEELS = {"wheel.L": CH_ENC_L, "wheel.R": CH_ENC_R}
+FAULTS = ("dead", "stuck", "noisy", "slip")
+_FIELDS = {"at_s", "duration_s", "sensor", "fault", "value", "sigma", "fraction"}
+_LIMITS = {CH_LINE: (0, 1)} | {c: (0, 5000) for c in CH_IR} | {CH_FLAME_L: (0, 65535), CH_FLAME_R: (0, 65535)}
+
+
+@dataclass(frozen=True)
+class Event:
+    at_s: float
+    sensor: str
+    fault: str
+    duration_s: float = math.inf
+    value: float = 0.0  # dead: the reading
+    sigma: float = 0.0  # noisy: gaussian sigma, sensor units
+    fraction: float = 0.0  # slip: share of the wheel's rotation lost on the floor
+
+    @property
+    def channel(self) -> int:
+        return WHEELS[self.sensor] if self.fault == "slip" else CHANNELS[self.sensor]
+
+    def to_table(self) -> dict[str, Any]:
+        d: dict[str, Any] = {"at_s": self.at_s, "sensor": self.sensor, "fault": self.fault}
+        if math.isfinite(self.duration_s):
+            d["duration_s"] = self.duration_s
+        if self.fault == "dead" and self.value:
+            d["value"] = self.value
+        if self.fault == "noisy":
+            d["sigma"] = self.sigma
+        if self.fault == "slip":
+            d["fraction"] = self.fraction
+        return d
+
+
+def _num(src: str, name: str, v: Any, lo: float, hi: float = math.inf, lo_open: bool = False) -> float:
+    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) \
+            or v < lo or v > hi or (lo_open and v == lo):
+        rng = f"({lo:g}, {hi:g}]" if lo_open else f"[{lo:g}, {hi:g}]"
+        raise FfrInputError(src, name, v, f"must be a number in {rng}")
+    return float(v)
+
+
+def parse_events(raw: Any, source: str) -> list[Event]:
+    """Validate a scenario's ``events`` array; errors name file, field and value on one line."""
+    if not isinstance(raw, list):
+        raise FfrInputError(source, "events", raw, "must be an array of tables ([[events]])")
+    out = []
+    for i, t in enumerate(raw):
+        pre = f"events[{i}]"
+        if not isinstance(t, dict):
+            raise FfrInputError(source, pre, t, "must be a table")
+        unknown = set(t) - _FIELDS
+        if unknown:
+            k = sorted(unknown)[0]
+            raise FfrInputError(source, f"{pre}.{k}", t[k], f"unknown field (known: {', '.join(sorted(_FIELDS))})")
+        for k in ("at_s", "sensor", "fault"):
+            if k not in t:
+                raise FfrInputError(source, f"{pre}.{k}", None, "missing")
+        fault = t["fault"]
+        if fault not in FAULTS:
+            raise FfrInputError(source, f"{pre}.fault", fault, f"unknown fault (known: {', '.join(FAULTS)})")
+        sensor = t["sensor"]
+        known = WHEELS if fault == "slip" else CHANNELS
+        if sensor not in known:
+            what = "wheel" if fault == "slip" else "sensor"
+            raise FfrInputError(source, f"{pre}.sensor", sensor, f"unknown {what} for '{fault}' (known: "
+                                f"{', '.join(known)})")
+        at = _num(source, f"{pre}.at_s", t["at_s"], 0.0)
+        dur = _num(source, f"{pre}.duration_s", t["duration_s"], 0.0, lo_open=True) if "duration_s" in t \
+            else math.inf
+        for k, needed in (("value", "dead"), ("sigma", "noisy"), ("fraction", "slip")):
+            if k in t and fault != needed:
+                raise FfrInputError(source, f"{pre}.{k}", t[k], f"only for fault '{needed}'")
+        value = sigma = fraction = 0.0
+        if fault == "dead" and "value" in t:
+            lo, hi = _LIMITS.get(CHANNELS[sensor], (-2.0**31, 2.0**31 - 1))
+            value = _num(source, f"{pre}.value", t["value"], lo, hi)
+        if fault == "noisy":
+            if "sigma" not in t:
+                raise FfrInputError(source, f"{pre}.sigma", None, "missing (noisy needs sigma)")
+            sigma = _num(source, f"{pre}.sigma", t["sigma"], 0.0, lo_open=True)
+        if fault == "slip":
+            if "fraction" not in t:
+                raise FfrInputError(source, f"{pre}.fraction", None, "missing (slip needs fraction)")
+            fraction = _num(source, f"{pre}.fraction", t["fraction"], 0.0, 0.95, lo_open=True)
+        out.append(Event(at, sensor, fault, dur, value, sigma, fraction))
+    return out
+
+
+class EventRunner:
+    """Applies a scenario's events to each tick's hardware units, in place."""
+
+    def __init__(self, events: list[Event], rng: np.random.Generator) -> None:
+        self.events = list(events)
+        self.rng = rng
+        self.held: dict[int, int] = {}  # channel -> reading when a 'stuck' began
+        self.enc_prev: dict[int, int] = {}  # raw encoder counts at the last tick
+        self.enc_extra: dict[int, float] = {}  # counts added by slip so far
+        self.active = [False] * len(self.events)
+
+    def apply(self, t: float, hw: np.ndarray) -> None:
+        # Encoders by increments: slip scales this tick's rotation, a dead or
+        # stuck encoder drops it; the counts lost or added stay lost or added.
+        for ch in (CH_ENC_L, CH_ENC_R):
+            raw = int(hw[ch])
+            prev = self.enc_prev.get(ch, raw)
+            self.enc_prev[ch] = raw
+            gain = 1.0
+            for ev in self.events:
+                if ev.channel == ch and ev.fault != "noisy" and ev.at_s <= t < ev.at_s + ev.duration_s:
+                    gain = gain / (1.0 - ev.fraction) if ev.fault == "slip" else 0.0
+            if gain != 1.0:
+                self.enc_extra[ch] = self.enc_extra.get(ch, 0.0) + (gain - 1.0) * (raw - prev)
+            if ch in self.enc_extra:
+                hw[ch] = raw + math.floor(self.enc_extra[ch] + 0.5)
+        for k, ev in enumerate(self.events):
+            ch = ev.channel
+            if ch in (CH_ENC_L, CH_ENC_R) and ev.fault != "noisy":
+                continue
+            on = ev.at_s <= t < ev.at_s + ev.duration_s
+            if on and not self.active[k]:
+                self.held[ch] = int(hw[ch])
+            self.active[k] = on
+            if not on:
+                continue
+            if ev.fault == "stuck":
+                hw[ch] = self.held[ch]
+            elif ev.fault == "dead":
+                hw[ch] = int(ev.value)
+            else:  # noisy
+                v = float(hw[ch]) + ev.sigma * float(self.rng.standard_normal())
+                lo, hi = _LIMITS.get(ch, (-2.0**31, 2.0**31 - 1))
+                hw[ch] = int(min(max(math.floor(v + 0.5), lo), hi))

@@ -1,0 +1,218 @@
+"""The ffr pytest plugin (registered through the ``pytest11`` entry point).
+
+Fixtures:
+
+* ``ffr_link``: the firmware link of the session, from ``--ffr-link URL``
+  (default ``ctypes:``, the in-process host build; ``serial:...``,
+  ``can:...``, ``host-board:...`` where those transports are installed).
+* ``ffr_plant``: a factory, ``ffr_plant(scenario)`` -> a fresh ``Plant`` at the
+  scenario's start pose.
+* ``ffr_mission``: the mission runner, ``ffr_mission(scenario)`` ->
+  ``(MissionResult, Trace)`` over ``ffr_link``, with the run options applied
+  (``--ffr-seed``, ``--ffr-noise``, ``--ffr-set``), every mission's metrics
+  recorded as JUnit properties, and, when the test fails, the one-line
+  ``ffr run ...`` command that replays each of its missions.
+
+Options: ``--ffr-link``, ``--ffr-seed``, ``--ffr-noise``, ``--ffr-set KEY=VALUE``
+(repeatable), ``--ffr-profile quick|thorough`` (the hypothesis profile of the
+property tests), ``--ffr-failures DIR`` (where replay scenarios are written).
+
+Markers: ``slow`` (whole missions), ``property`` (hypothesis over missions),
+``hil`` (needs a wire link: deselected unless ``--ffr-link`` is one).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shlex
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+MARKERS = {
+    "slow": "whole-mission tests (seconds each)",
+    "property": "hypothesis property tests over whole missions",
+    "hil": "needs a firmware link over a wire (serial:, can:, host-board:, qemu:); runs only with --ffr-link",
+}
+
+_REPLAYS = pytest.StashKey[list[tuple[Any, str, str]]]()
+
+
+def pytest_addoption(parser: pytest.Parser) -> None:
+    g = parser.getgroup("ffr", "ffr firmware-in-the-loop missions")
+    g.addoption("--ffr-link", default="ctypes:", metavar="URL", help="firmware link URL (default ctypes:)")
+    g.addoption("--ffr-seed", type=int, default=None, metavar="N", help="seed for every mission (default: the test's)")
+    g.addoption("--ffr-noise", default=None, metavar="PROFILE",
+                help="noise profile for every mission (none, typical, datasheet, harsh, FILE.toml)")
+    g.addoption("--ffr-set", action="append", default=[], metavar="KEY=VALUE",
+                help="firmware.NAME=V or robot.PATH=V for every mission (repeatable)")
+    g.addoption("--ffr-profile", default=None, choices=("quick", "thorough"),
+                help="hypothesis profile of the property tests (default quick, or $FFR_PROFILE)")
+    g.addoption("--ffr-failures", default="out/ffr-failures", metavar="DIR",
+                help="where the scenarios of failed missions are written (default out/ffr-failures)")
+
+
+# The property tests' budgets. "quick" keeps `make test` short; "thorough" is
+# `make test-thorough`. Derandomized: CI runs the same examples every time.
+PROFILES: dict[str, dict[str, Any]] = {
+    "quick": {"max_examples": 12, "derandomize": True},
+    "thorough": {"max_examples": 150, "derandomize": True},
+}
+active_profile = "quick"
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    global active_profile
+    for name, text in MARKERS.items():
+        config.addinivalue_line("markers", f"{name}: {text}")
+    active_profile = config.getoption("--ffr-profile") or os.environ.get("FFR_PROFILE") or "quick"
+    if active_profile not in PROFILES:
+        raise pytest.UsageError(f"FFR_PROFILE = {active_profile!r}: expected one of {', '.join(PROFILES)}")
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    url = config.getoption("--ffr-link")
+    if url.startswith("ctypes:"):
+        keep, drop = [], []
+        for it in items:
+            (drop if it.get_closest_marker("hil") else keep).append(it)
+        if drop:
+            config.hook.pytest_deselected(items=drop)
+            items[:] = keep
+
+
+def _settings(config: pytest.Config) -> list[tuple[str, str, Any]]:
+    out = []
+    for text in config.getoption("--ffr-set"):
+        key, sep, raw = text.partition("=")
+        group, dot, name = key.partition(".")
+        if not sep or not dot or group not in ("firmware", "robot") or not name:
+            raise pytest.UsageError(f"--ffr-set = {text!r}: expected firmware.NAME=VALUE or robot.PATH=VALUE")
+        try:
+            value = json.loads(raw)
+        except json.JSONDecodeError:
+            value = raw
+        out.append((group, name, value))
+    return out
+
+
+@pytest.fixture(scope="session")
+def ffr_link(pytestconfig: pytest.Config):
+    """The session's firmware link (``--ffr-link``), opened once."""
+    from harness.links import LinkError, open_link
+    url = pytestconfig.getoption("--ffr-link")
+    try:
+        link = open_link(url)
+    except LinkError as exc:
+        raise pytest.UsageError(str(exc)) from None
+    yield link
+    link.close()
+
+
+@pytest.fixture
+def ffr_plant():
+    """``ffr_plant(scenario)``: a fresh plant at the scenario's start pose."""
+    from sim_plant.plant import Plant
+
+    def make(scn: Any) -> Any:
+        return Plant(scn.arena, scn.robot, *scn.start, plant_dt=scn.timing.plant_dt_ms / 1000.0, source=scn.source)
+
+    return make
+
+
+def replay_command(scn: Any, link_url: str, failures_dir: str | Path | None) -> str | None:
+    """One line of ``ffr run`` that replays the scenario: flags when they can say it all, else a
+    scenario file written to ``failures_dir`` (None: don't write, return None)."""
+    from harness.scenario import default_start, scenario_to_toml
+    from sim_plant.arena import DEFAULT_ARENA
+    from sim_plant.sensors import load_noise_profile
+
+    noise_name = scn.noise.name
+    named = False
+    try:
+        named = load_noise_profile(noise_name) == scn.noise if not noise_name.endswith(".toml") else False
+    except Exception:  # noqa: BLE001 - an inline or file profile: not nameable
+        named = False
+    simple = (not scn.events and scn.start == default_start(scn.arena) and named and not scn.robot_file
+              and scn.arena.source == str(DEFAULT_ARENA) and not scn.stop_on_contact
+              and scn.timing == type(scn.timing)())
+    link = [] if link_url == "ctypes:" else ["--link", link_url]
+    if simple:
+        argv = ["ffr", "run", "--candle", f"{scn.candle[0]!r},{scn.candle[1]!r}", "--seed", str(scn.seed)]
+        if scn.noise.enabled:
+            argv += ["--noise", noise_name]
+        for group, d in (("firmware", scn.firmware), ("robot", scn.robot_overrides)):
+            argv += [a for k, v in d.items() for a in ("--set", f"{group}.{k}={json.dumps(v)}")]
+        return shlex.join(argv + link)
+    if failures_dir is None:
+        return None
+    d = Path(failures_dir)
+    d.mkdir(parents=True, exist_ok=True)
+    path = d / (re.sub(r"[^A-Za-z0-9_.-]+", "_", scn.name) + ".replay.toml")
+    path.write_text(scenario_to_toml(scn, comment="written by the ffr pytest plugin: a mission that failed"),
+                    encoding="utf-8")
+    return shlex.join(["ffr", "run", "--scenario", str(path), *link])
+
+
+@pytest.fixture
+def ffr_mission(request: pytest.FixtureRequest, ffr_link: Any, record_property: Any):
+    """``ffr_mission(scenario, record=True)`` -> (result, trace), with the run options applied."""
+    from harness.loop import run_mission
+    from sim_plant.robot import override
+    from sim_plant.sensors import load_noise_profile
+
+    config = request.config
+    seed = config.getoption("--ffr-seed")
+    noise = config.getoption("--ffr-noise")
+    settings = _settings(config)
+    replays: list[tuple[Any, str, str]] = []
+    request.node.stash[_REPLAYS] = replays
+    count = 0
+
+    def run(scn: Any, record: bool = True) -> tuple[Any, Any]:
+        nonlocal count
+        if seed is not None:
+            scn.seed = seed
+        if noise is not None:
+            scn.noise = load_noise_profile(noise)
+        for group, k, v in settings:
+            if group == "firmware":
+                scn.firmware[k] = v
+            else:
+                scn.robot = override(scn.robot, k, v, "--ffr-set")
+                scn.robot_overrides[k] = v
+        res, trace = run_mission(scn, ffr_link, record=record)
+        count += 1
+        prefix = "" if count == 1 else f"{count}."
+        for key, value in res.to_json().items():
+            if key in ("final_pose", "candle"):
+                value = " ".join(str(v) for v in value)
+            record_property(f"{prefix}{key}", value)
+        cmd = replay_command(scn, ffr_link.url, None)  # a file only if the test fails
+        if cmd:
+            record_property(f"{prefix}replay", cmd)
+        replays.append((scn, ffr_link.url, f"{scn.name}: {res.outcome}{' (' + res.detail + ')' if res.detail else ''}"))
+        return res, trace
+
+    return run
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]):
+    report = yield
+    if report.when == "call" and report.failed:
+        missions = item.stash.get(_REPLAYS, [])
+        if missions:
+            where = item.config.getoption("--ffr-failures")
+            # a property test runs many missions: the last ones are the (shrunk) failure
+            shown = missions[-5:]
+            lines = [f"{what} -> {replay_command(scn, url, where)}" for scn, url, what in shown]
+            if len(missions) > len(shown):
+                lines.insert(0, f"({len(missions)} missions in this test; the last {len(shown)}:)")
+            report.sections.append(("ffr replay", "\n".join(lines)))
+            # the last line of a failure is what a reader sees first: the command
+            report.longrepr = f"{report.longrepr}\nffr replay: {lines[-1].rsplit(' -> ', 1)[-1]}"
+    return report

@@ -1,0 +1,160 @@
+"""``ffr sweep``: the command line of ``harness.sweep`` (kept apart so cli.py stays small)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import Any
+
+from sim_plant.errors import FfrInputError
+
+
+def _int_list(text: str, what: str) -> tuple[int, ...]:
+    """``0:10`` (0..9), ``3`` or ``1,2,5``."""
+    try:
+        if ":" in text:
+            a, b = text.split(":")
+            vals = tuple(range(int(a), int(b)))
+        else:
+            vals = tuple(int(v) for v in text.split(","))
+        if not vals or min(vals) < 0:
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{what} = {text!r}: expected A:B (A..B-1) or N,N,... (N >= 0)") from None
+    return vals
+
+
+def _param(text: str) -> Any:
+    from harness.sweep import parse_param
+    try:
+        return parse_param(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def add_sweep_parser(sub: Any) -> None:
+    from harness.cli import _setting
+    sp = sub.add_parser("sweep", help="many missions: candle positions x seeds x parameters, on all cores or a "
+                                      "Dask cluster")
+    sp.add_argument("--rooms", type=lambda t: _int_list(t, "--rooms"), default=(1, 2, 3, 4),
+                    help="rooms to place candles in (default 1,2,3,4)")
+    sp.add_argument("--candles", choices=("default", "random", "grid"), default="random",
+                    help="the room's default spot, N random legal spots per room, or a grid of legal spots")
+    sp.add_argument("-n", "--n-candles", type=int, default=10, help="random candles per room (default 10)")
+    sp.add_argument("--grid-step", type=float, default=0.10, help="grid spacing in m (default 0.10)")
+    sp.add_argument("--seeds", type=lambda t: _int_list(t, "--seeds"), default=(0,),
+                    help="noise seeds: A:B or N,N,... (default 0)")
+    sp.add_argument("--noise", default="none", help="noise profile (none, typical, datasheet, harsh, FILE.toml)")
+    sp.add_argument("--param", type=_param, action="append", default=[], metavar="KEY=LO:HI:N",
+                    help="swept setting, firmware.NAME or robot.PATH; LO:HI:N or V1,V2,... (repeatable)")
+    sp.add_argument("--mode", choices=("grid", "random"), default="grid",
+                    help="parameters: every combination, or --samples random draws within the ranges")
+    sp.add_argument("--samples", type=int, default=20, help="random mode: parameter draws (default 20)")
+    sp.add_argument("--sweep-seed", type=int, default=0, help="seed of the candle and parameter draws")
+    sp.add_argument("--set", dest="settings", type=_setting, action="append", default=[], metavar="KEY=VALUE",
+                    help="fixed setting for every mission (repeatable)")
+    sp.add_argument("--link", default="ctypes:", help="firmware link URL (default ctypes:)")
+    sp.add_argument("--arena", default=None, help="arena TOML file")
+    sp.add_argument("--robot", default=None, help="robot TOML file")
+    sp.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
+                    help="run on this Dask cluster (default: a local one, one worker per core)")
+    sp.add_argument("--workers", type=int, default=None, help="local workers (default: all cores)")
+    sp.add_argument("--out", default=None, metavar="FILE.csv|FILE.parquet", help="one row per mission")
+    sp.add_argument("--plot", default=None, metavar="FILE.png", help="success and time over the arena and params")
+    sp.add_argument("--json", default=None, metavar="FILE|-", help="the summary numbers as JSON")
+    sp.add_argument("--min-success", type=float, default=None, metavar="PCT",
+                    help="exit 1 when fewer than PCT %% of the missions succeed")
+    sp.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def _check(args: argparse.Namespace) -> None:
+    """Every setting and parameter value checked before any mission starts."""
+    from harness.cli import UsageError
+    from harness.firmware_config import apply_overrides
+    from harness.links.ctypes_link import default_config
+    from sim_plant.arena import load_arena
+    from sim_plant.robot import load_robot, override
+    from sim_plant.sensors import load_noise_profile
+
+    if args.n_candles < 1:
+        raise UsageError(f"--n-candles = {args.n_candles}: expected >= 1")
+    if not args.grid_step > 0.0:
+        raise UsageError(f"--grid-step = {args.grid_step}: expected > 0")
+    if args.mode == "random" and args.samples < 1:
+        raise UsageError(f"--samples = {args.samples}: expected >= 1")
+    if args.workers is not None and args.workers < 1:
+        raise UsageError(f"--workers = {args.workers}: expected >= 1")
+    if args.scheduler and not args.scheduler.startswith(("tcp://", "tls://", "inproc://")):
+        raise UsageError(f"--scheduler = {args.scheduler!r}: expected tcp://HOST:PORT")
+    for path, what in ((args.out, "--out"), (args.plot, "--plot")):
+        if path and what == "--out" and not path.endswith((".csv", ".parquet")):
+            raise UsageError(f"--out = {path!r}: expected a .csv or .parquet file")
+    if args.out and args.out.endswith(".parquet"):
+        try:
+            import pyarrow  # noqa: F401
+        except ImportError:
+            raise UsageError(f"--out = {args.out!r}: Parquet needs pyarrow (pip install pyarrow); "
+                             "or write .csv") from None
+    load_noise_profile(args.noise)
+    arena = load_arena(args.arena)
+    for r in args.rooms:
+        arena.room(r)
+    robot = load_robot(args.robot)
+    cfg = default_config()
+    fixed_fw = {k: v for g, k, v in args.settings if g == "firmware"}
+    apply_overrides(cfg, fixed_fw, "--set")
+    for g, k, v in args.settings:
+        if g == "robot":
+            robot = override(robot, k, v, "--set")
+    for p in args.param:
+        for v in p.values:
+            if p.group == "firmware":
+                apply_overrides(default_config(), {p.name: v}, "--param")
+            else:
+                override(robot, p.name, v, "--param")
+
+
+def run_sweep(args: argparse.Namespace) -> int:
+    from harness import sweep as sw
+    from harness.cli import UsageError, _write_atomic
+
+    _check(args)
+    spec = sw.SweepSpec(
+        rooms=args.rooms, candles=args.candles, n_candles=args.n_candles, grid_step_m=args.grid_step,
+        seeds=args.seeds, noise=args.noise, params=tuple(args.param), mode=args.mode, n_random=args.samples,
+        sweep_seed=args.sweep_seed, firmware={k: v for g, k, v in args.settings if g == "firmware"},
+        robot={k: v for g, k, v in args.settings if g == "robot"}, link=args.link, arena=args.arena,
+        robot_file=args.robot)
+    jobs = sw.build_jobs(spec)
+    if not jobs:
+        raise UsageError("the sweep has no missions (no legal candle position?)")
+    print(f"sweep: {len(jobs)} missions on {args.scheduler or 'the local cores'}", flush=True)
+    try:
+        rows, wall = sw.timed_execute(jobs, args.scheduler, args.workers, show_progress=not args.no_progress)
+    except (OSError, TimeoutError) as exc:
+        raise UsageError(f"--scheduler = {args.scheduler!r}: cannot reach the cluster ({exc})") from None
+    text = sw.summary(rows, spec.params, wall)
+    print(text)
+    if args.out:
+        sw.write_results(args.out, rows)
+    if args.plot:
+        sw.plot(args.plot, rows, spec.params, args.arena)
+    n_ok = sum(1 for r in rows if r["success"])
+    rate = 100.0 * n_ok / len(rows)
+    if args.json:
+        payload = {"missions": len(rows), "succeeded": n_ok, "success_rate_pct": rate, "wall_s": wall,
+                   "missions_per_s": len(rows) / wall if wall > 0 else None,
+                   "failures": [{"outcome": r["outcome"], "detail": r["detail"], "replay": r["replay"]}
+                                for r in rows if not r["success"]]}
+        body = json.dumps(payload, indent=2) + "\n"
+        if args.json == "-":
+            sys.stdout.write(body)
+        else:
+            _write_atomic(args.json, body)
+    if args.min_success is not None and rate < args.min_success:
+        return 1
+    return 0
+
+
+__all__ = ["FfrInputError", "add_sweep_parser", "run_sweep"]

@@ -1,0 +1,141 @@
+"""ffr sweep: jobs, the Dask path (a local cluster of worker processes on loopback), results, CLI."""
+
+from __future__ import annotations
+
+import csv
+import json
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from harness import sweep as sw
+from harness.cli import main
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def test_parse_param() -> None:
+    p = sw.parse_param("firmware.cruise_speed_mm_s=200:400:3")
+    assert p.values == (200, 300, 400) and p.group == "firmware" and p.name == "cruise_speed_mm_s"
+    q = sw.parse_param("robot.ir.LF.angle_deg=30,45.5")
+    assert q.values == (30, 45.5) and (q.lo, q.hi) == (30, 45.5)
+    for bad in ("cruise=1:2:3", "firmware.x=1:2", "firmware.x=a,b", "motor.R=1,2", "firmware.x=1:2:0"):
+        with pytest.raises(ValueError):
+            sw.parse_param(bad)
+
+
+def test_jobs_are_the_product_of_candles_params_seeds() -> None:
+    spec = sw.SweepSpec(rooms=(1, 3), candles="random", n_candles=2, seeds=(0, 1),
+                        params=(sw.parse_param("firmware.cruise_speed_mm_s=250,300,350"),))
+    jobs = sw.build_jobs(spec)
+    assert len(jobs) == 2 * 2 * 3 * 2
+    assert {j["room"] for j in jobs} == {1, 3}
+    assert {j["firmware"]["cruise_speed_mm_s"] for j in jobs} == {250, 300, 350}
+    assert sw.build_jobs(spec) == jobs  # the candle draws are seeded
+    grid = sw.candle_positions(sw.SweepSpec(rooms=(4,), candles="grid", grid_step_m=0.1))
+    assert len(grid) > 20 and all(r == 4 for r, _, _ in grid)
+
+
+def test_random_mode_draws_within_the_ranges() -> None:
+    spec = sw.SweepSpec(rooms=(1,), candles="default", params=(sw.parse_param("robot.motor.R=6:8:2"),),
+                        mode="random", n_random=5)
+    vals = [j["robot"]["motor.R"] for j in sw.build_jobs(spec)]
+    assert len(vals) == 5 and all(6 <= v <= 8 for v in vals) and len(set(vals)) == 5
+
+
+def test_local_dask_cluster_gives_the_serial_results(tmp_path) -> None:
+    """The same rows through a LocalCluster of two worker processes (127.0.0.1) as in this process."""
+    spec = sw.SweepSpec(rooms=(1, 2), candles="random", n_candles=2, seeds=(0, 1), noise="typical")
+    jobs = sw.build_jobs(spec)
+    done = []
+    rows = sw.execute(jobs, workers=2, progress=done.append)
+    assert sum(done) == len(jobs) == len(rows) == 8
+    assert rows == sw.run_local_serial(jobs)
+    assert all(r["success"] for r in rows)
+
+
+def test_scheduler_address_runs_on_that_cluster(tmp_path) -> None:
+    """`--scheduler tcp://127.0.0.1:PORT`: a scheduler and two `dask worker` processes, all on loopback."""
+    with socket.socket() as s:  # a free loopback port
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    addr = f"tcp://127.0.0.1:{port}"
+    bindir = Path(sys.executable).parent
+    procs = [subprocess.Popen([str(bindir / "dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port),
+                               "--no-dashboard"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+    try:
+        time.sleep(1.5)
+        for _ in range(2):
+            procs.append(subprocess.Popen([str(bindir / "dask"), "worker", addr, "--nthreads", "1",
+                                           "--host", "127.0.0.1", "--no-dashboard"],
+                                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=REPO))
+        from dask.distributed import Client
+        with Client(addr, timeout="20s") as c:
+            c.wait_for_workers(2, timeout=60)
+        out = tmp_path / "r.csv"
+        code = main(["sweep", "--scheduler", addr, "--rooms", "1", "--candles", "default", "--seeds", "0:4",
+                     "--out", str(out), "--no-progress"])
+        assert code == 0
+        rows = list(csv.DictReader(out.open()))
+        assert len(rows) == 4 and all(r["outcome"] == "home" for r in rows)
+    finally:
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            p.wait(timeout=30)
+
+
+def test_cli_sweep_outputs_summary_csv_plot_json(tmp_path, capsys) -> None:
+    out, png, js = tmp_path / "r.csv", tmp_path / "p.png", tmp_path / "s.json"
+    code = main(["sweep", "--rooms", "1", "--candles", "default", "--seeds", "0:2", "--workers", "2",
+                 "--param", "firmware.cruise_speed_mm_s=280:320:2", "--out", str(out), "--plot", str(png),
+                 "--json", str(js), "--no-progress"])
+    assert code == 0
+    text = capsys.readouterr().out
+    assert "4 missions: 4 succeeded (100.0 %)" in text and "firmware.cruise_speed_mm_s:" in text
+    rows = list(csv.DictReader(out.open()))
+    assert len(rows) == 4 and {r["firmware.cruise_speed_mm_s"] for r in rows} == {"280", "320"}
+    assert all(r["replay"].startswith("ffr run --candle") for r in rows)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert json.loads(js.read_text())["success_rate_pct"] == 100.0
+
+
+def test_a_failure_is_summarised_with_its_replay(capsys) -> None:
+    """A sweep that breaks the robot: the summary names the causes and a replay that fails the same way."""
+    code = main(["sweep", "--rooms", "2", "--candles", "default", "--workers", "1", "--no-progress",
+                 "--set", "firmware.front_stop_mm=60", "--min-success", "50"])
+    text = capsys.readouterr().out
+    assert code == 1 and "failure causes:" in text
+    replay = text.split("replay the first: ")[1].splitlines()[0]
+    argv = replay.split()[1:]
+    assert argv[0] == "run" and main(argv) == 1
+
+
+@pytest.mark.parametrize(("argv", "needle"), [
+    (["--param", "firmware.nope=1:2:2"], "firmware.nope"),
+    (["--param", "robot.motor.R=-1,2"], "robot.motor.R"),
+    (["--param", "cruise=1"], "--param"),
+    (["--rooms", "9"], "room = 9"),
+    (["--seeds", "x"], "--seeds"),
+    (["--noise", "loud"], "loud"),
+    (["--out", "r.txt"], "--out"),
+    (["--scheduler", "http://x"], "--scheduler"),
+])
+def test_sweep_bad_input_one_line_exit_2_nothing_written(tmp_path, capsys, argv, needle) -> None:
+    out = tmp_path / "r.csv"
+    args = ["sweep", *argv] + ([] if "--out" in argv else ["--out", str(out)])
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("ffr: error:") and needle in err
+    assert not out.exists()
+
+
+def test_unreachable_scheduler_is_one_line(capsys) -> None:
+    assert main(["sweep", "--scheduler", "tcp://127.0.0.1:9", "--rooms", "1", "--candles", "default",
+                 "--no-progress"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "cannot reach" in err
