@@ -38,6 +38,7 @@ MARKERS = {
     "hil": "needs a firmware link over a wire (serial:, can:, host-board:, qemu:); runs only with --ffr-link",
 }
 
+MAX_RECORDED = 20  # missions per test whose metrics go into the JUnit report
 _REPLAYS = pytest.StashKey[list[tuple[Any, str, str]]]()
 
 
@@ -187,16 +188,22 @@ def ffr_mission(request: pytest.FixtureRequest, ffr_link: Any, record_property: 
         res, trace = run_mission(scn, ffr_link, record=record)
         count += 1
         prefix = "" if count == 1 else f"{count}."
-        for key, value in res.to_json().items():
-            if key in ("final_pose", "candle"):
-                value = " ".join(str(v) for v in value)
-            record_property(f"{prefix}{key}", value)
-        cmd = replay_command(scn, ffr_link.url, None)  # a file only if the test fails
-        if cmd:
-            record_property(f"{prefix}replay", cmd)
+        if count <= MAX_RECORDED:  # a property test runs hundreds: the report keeps the first ones
+            for key, value in res.to_json().items():
+                if key in ("final_pose", "candle"):
+                    value = " ".join(str(v) for v in value)
+                record_property(f"{prefix}{key}", value)
+            cmd = replay_command(scn, ffr_link.url, None)  # a file only if the test fails
+            if cmd:
+                record_property(f"{prefix}replay", cmd)
         replays.append((scn, ffr_link.url, f"{scn.name}: {res.outcome}{' (' + res.detail + ')' if res.detail else ''}"))
         return res, trace
 
+    def total() -> None:
+        if count > 1:
+            record_property("missions", count)
+
+    request.addfinalizer(total)
     return run
 
 

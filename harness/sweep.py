@@ -241,7 +241,7 @@ def execute(jobs: Sequence[dict[str, Any]], scheduler: str | None = None, worker
         client = Client(scheduler, timeout="5s")
     else:
         n = workers or os.cpu_count() or 1
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
                                host="127.0.0.1", silence_logs=50)
         client = Client(cluster)
     try:

@@ -246,6 +246,13 @@ typedef struct {
     int16_t case_turn_deg;         /* turn chosen by the wall case            */
     uint8_t phase;
     uint8_t pc;                    /* route program counter                   */
+    /* the followed wall's direction from how its distance changes with travel
+     * (drive.c): a window of travel on one side */
+    float win_s_mm;                /* odometry distance at the window's start */
+    float win_d_mm;                /* the wall's distance then                */
+    float win_h_rad;               /* the heading then                        */
+    int8_t win_side;               /* -1: no window                           */
+    uint8_t reserved[3];
 } ffr_route_state_t;
 
 typedef struct {

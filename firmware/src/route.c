@@ -22,6 +22,7 @@ static void begin_current(ffr_state_t *st)
     s = cur(st);
     st->route.phase = PH_DRIVE;
     st->route.start_mm = st->odo.dist_mm;
+    st->route.win_side = -1;
     if (s->op == FFR_OP_TURN && s->param == 0) {
         /* decided by the wall case, from what the last leg saw: before the reset */
         st->route.case_turn_deg = ffr_wall_case_turn(ffr_wall_case_sensed(cfg, st->ir_mm, &st->open), s->side);

