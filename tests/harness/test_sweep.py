@@ -139,3 +139,17 @@ def test_unreachable_scheduler_is_one_line(capsys) -> None:
                  "--no-progress"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "cannot reach" in err
+
+
+def test_envelope_table(capsys) -> None:
+    """`make envelope`'s tool: one kind, one scale, a few missions, through the same Dask path."""
+    from harness import envelope
+
+    assert envelope.scaled({"ir": {"sigma": 20.0, "quant_step": 4.883}}, 1.5) == {
+        "ir": {"sigma": 30.0, "quant_step": 4.883}}
+    code = envelope.main(["--kinds", "ir sigma 20 mV", "--scales", "0.5,1", "-n", "1", "--seeds", "0:1",
+                          "--workers", "1"])
+    out = capsys.readouterr().out
+    assert code == 0
+    row = next(line for line in out.splitlines() if line.startswith("| ir sigma 20 mV |"))
+    assert row == "| ir sigma 20 mV | 100.0 | 100.0 | x1 |"
