@@ -44,7 +44,9 @@ _REPLAYS = pytest.StashKey[list[tuple[Any, str, str]]]()
 
 def pytest_addoption(parser: pytest.Parser) -> None:
     g = parser.getgroup("ffr", "ffr firmware-in-the-loop missions")
-    g.addoption("--ffr-link", default="ctypes:", metavar="URL", help="firmware link URL (default ctypes:)")
+    g.addoption("--ffr-link", "--link", dest="ffr_link", default="ctypes:", metavar="URL",
+                help="firmware link URL for every mission (default ctypes:), e.g. host-board:serial, "
+                     "host-board:can, qemu:mps2-an386, serial:/dev/ttyACM0, can:socketcan:can0")
     g.addoption("--ffr-seed", type=int, default=None, metavar="N", help="seed for every mission (default: the test's)")
     g.addoption("--ffr-noise", default=None, metavar="PROFILE",
                 help="noise profile for every mission (none, typical, datasheet, harsh, FILE.toml)")
@@ -98,6 +100,27 @@ def _settings(config: pytest.Config) -> list[tuple[str, str, Any]]:
             value = raw
         out.append((group, name, value))
     return out
+
+
+def pytest_report_header(config: pytest.Config) -> str | None:
+    url = config.getoption("ffr_link")
+    return None if url == "ctypes:" else f"ffr firmware link: {url}"
+
+
+@pytest.fixture(autouse=True)
+def _ffr_default_link(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch):
+    """With ``--ffr-link URL``, a test that runs a mission on the default link
+    (``run_mission(scn)``) gets that URL instead; tests naming a link keep it."""
+    url = request.config.getoption("ffr_link")
+    if url != "ctypes:":
+        import harness.loop
+        from harness.links import open_link
+
+        def chosen(u: str):  # noqa: ANN202 - open_link's own signature
+            return open_link(url if u == "ctypes:" else u)
+
+        monkeypatch.setattr(harness.loop, "open_link", chosen)
+    yield
 
 
 @pytest.fixture(scope="session")
