@@ -48,7 +48,7 @@ $(BUILD)/host/libffr.so: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(HOST_CFLAGS) -shared -o $@ $(FW_SRCS) $(WIRE_SRCS)
 
-$(BUILD)/host/ffr_unit_tests: $(FW_SRCS) $(FW_TESTS) $(FW_HDRS) firmware/tests/unit.h Makefile
+$(BUILD)/host/ffr_unit_tests: $(FW_SRCS) $(FW_TESTS) $(FW_HDRS) firmware/tests/unit.h firmware/tests/rig.h Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(CSTD) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -Ifirmware/tests \
 		-o $@ $(FW_SRCS) $(FW_TESTS) -lm

@@ -4,74 +4,8 @@
  * line and flame readings. No plant.
  */
 #include "ffr_internal.h"
+#include "rig.h"
 #include "unit.h"
-
-typedef struct {
-    ffr_state_t st;
-    ffr_inputs_t in;
-    ffr_outputs_t out;
-    float enc_f[2];
-} rig_t;
-
-static uint16_t mv_for_mm(const ffr_config_t *cfg, float mm)
-{
-    return (uint16_t)(cfg->ir_k_mv_mm / (mm + cfg->ir_d0_mm) + cfg->ir_offset_mv + 0.5f);
-}
-
-static void rig_init(rig_t *r, const ffr_config_t *cfg)
-{
-    int i;
-    ffr_init(&r->st, cfg);
-    r->in.t_ms = 0;
-    r->in.seq = 0;
-    r->in.enc[0] = r->in.enc[1] = 0;
-    r->enc_f[0] = r->enc_f[1] = 0.0f;
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        r->in.ir_mv[i] = 0; /* nothing in range */
-    }
-    r->in.flame[0] = r->in.flame[1] = 20;
-    r->in.line = 0;
-    r->in.start = 0;
-}
-
-/* one tick; the fake drive turns each wheel in proportion to its PWM */
-static void tick(rig_t *r)
-{
-    int i;
-    ffr_step(&r->st, &r->in, &r->out);
-    CHECK(r->out.seq == r->in.seq);
-    for (i = 0; i < 2; ++i) {
-        r->enc_f[i] += (float)r->out.pwm[i] * 0.012f;
-        r->in.enc[i] = (int32_t)r->enc_f[i];
-    }
-    r->in.t_ms += 10u;
-    r->in.seq += 1u;
-}
-
-static int run_until_state(rig_t *r, uint8_t state, int max_ticks)
-{
-    int i;
-    for (i = 0; i < max_ticks; ++i) {
-        tick(r);
-        if (r->out.state == state) {
-            return 1;
-        }
-    }
-    return 0;
-}
-
-/* run until the robot drives forward (a turn in place has ended) */
-static int run_until_driving(rig_t *r, int max_ticks)
-{
-    int i;
-    for (i = 0; i < max_ticks; ++i) {
-        tick(r);
-        if (r->st.cmd_v_mm_s > 0.0f && r->st.cmd_w_rad_s < 0.2f && r->st.cmd_w_rad_s > -0.2f) {
-            return 1;
-        }
-    }
-    return 0;
-}
 
 static void corridor_route(void)
 {
@@ -83,28 +17,28 @@ static void corridor_route(void)
 
     /* no start signal: idle, motors off */
     for (i = 0; i < 10; ++i) {
-        tick(&r);
+        rig_tick(&r);
     }
     CHECK(r.out.state == FFR_ST_IDLE);
     CHECK(r.out.pwm[0] == 0 && r.out.pwm[1] == 0 && r.out.fan == 0);
 
     /* start: the first route step follows a wall forward */
     r.in.start = 1;
-    r.in.ir_mv[FFR_IR_RF] = mv_for_mm(&cfg, 226.0f);
-    r.in.ir_mv[FFR_IR_RR] = mv_for_mm(&cfg, 226.0f);
+    r.in.ir_mv[FFR_IR_RF] = rig_mv_for_mm(&cfg, 226.0f);
+    r.in.ir_mv[FFR_IR_RR] = rig_mv_for_mm(&cfg, 226.0f);
     for (i = 0; i < 30; ++i) {
-        tick(&r);
+        rig_tick(&r);
     }
     CHECK(r.out.state == FFR_ST_FOLLOW);
     CHECK(r.out.step == 0);
     CHECK(r.out.pwm[0] > 100 && r.out.pwm[1] > 100);
 
     /* wall ahead, wall on the right, left open: case "corner left" */
-    r.in.ir_mv[FFR_IR_CF] = mv_for_mm(&cfg, 110.0f);
-    tick(&r);
+    r.in.ir_mv[FFR_IR_CF] = rig_mv_for_mm(&cfg, 110.0f);
+    rig_tick(&r);
     CHECK(r.out.state == FFR_ST_TURN);
     CHECK(r.out.step == 1);
-    CHECK(run_until_state(&r, FFR_ST_FOLLOW, 500));
+    CHECK(rig_run_until_state(&r, FFR_ST_FOLLOW, 500));
     CHECK(r.out.step == 2);
     CHECK_NEAR(r.st.odo.heading_rad, 0.5 * 3.14159265, 2.0f * FFR_DEG);
     /* the held heading is the turn's target: square to the wall that was followed */
@@ -129,22 +63,22 @@ static void room_task(void)
     cfg.return_start[0] = 2;
     rig_init(&r, &cfg);
     r.in.start = 1;
-    tick(&r);
+    rig_tick(&r);
     CHECK(r.out.state == FFR_ST_ENTER);
     CHECK(r.out.room == 1);
 
     /* the doorway line passes under the sensor */
     for (i = 0; i < 20; ++i) {
-        tick(&r);
+        rig_tick(&r);
     }
     r.in.line = 1;
-    tick(&r);
-    tick(&r);
-    tick(&r);
-    tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
     r.in.line = 0;
     CHECK((r.out.flags & FFR_FLAG_IN_ROOM) != 0);
-    CHECK(run_until_state(&r, FFR_ST_SCAN, 400));
+    CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 400));
 
     /* scanning: the flame signal rises and falls with the heading */
     for (i = 0; i < 400 && r.out.state == FFR_ST_SCAN; ++i) {
@@ -155,66 +89,66 @@ static void room_task(void)
         }
         r.in.flame[0] = r.in.flame[1] = (uint16_t)s;
         seen_scan = 1;
-        tick(&r);
+        rig_tick(&r);
     }
     CHECK(seen_scan);
     CHECK((r.out.flags & FFR_FLAG_FLAME_SEEN) != 0);
     /* it turns back to the strongest heading (80 deg) and approaches */
     r.in.flame[0] = r.in.flame[1] = 900;
-    CHECK(run_until_state(&r, FFR_ST_APPROACH, 400));
+    CHECK(rig_run_until_state(&r, FFR_ST_APPROACH, 400));
     CHECK_NEAR(r.st.odo.heading_rad / FFR_DEG, 80.0, 6.0);
     /* steering: more on the left sensor turns left */
     r.in.flame[0] = 1200;
     r.in.flame[1] = 600;
-    tick(&r);
+    rig_tick(&r);
     CHECK(r.st.cmd_w_rad_s > 0.0f);
     r.in.flame[0] = r.in.flame[1] = 900;
     for (i = 0; i < 30; ++i) {
-        tick(&r);
+        rig_tick(&r);
     }
     /* the candle circle: stop, fans on */
     r.in.line = 1;
-    tick(&r);
-    tick(&r);
-    tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
     r.in.line = 0;
-    tick(&r);
+    rig_tick(&r);
     CHECK(r.out.state == FFR_ST_EXTINGUISH);
     CHECK(r.out.fan == 1);
     for (i = 0; i < 100; ++i) {
-        tick(&r);
+        rig_tick(&r);
     }
     CHECK(r.out.fan == 1);
     /* the flame goes out: fans off, verify, then back to the door */
     r.in.flame[0] = r.in.flame[1] = 20;
-    CHECK(run_until_state(&r, FFR_ST_VERIFY, 100));
+    CHECK(rig_run_until_state(&r, FFR_ST_VERIFY, 100));
     CHECK(r.out.fan == 0);
-    CHECK(run_until_state(&r, FFR_ST_TO_DOOR, 200));
+    CHECK(rig_run_until_state(&r, FFR_ST_TO_DOOR, 200));
     CHECK((r.out.flags & FFR_FLAG_EXTINGUISHED) != 0);
-    CHECK(run_until_state(&r, FFR_ST_EXIT, 1500));
+    CHECK(rig_run_until_state(&r, FFR_ST_EXIT, 1500));
     /* out across the doorway line, then the way home starts */
-    CHECK(run_until_driving(&r, 400));
+    CHECK(rig_run_until_driving(&r, 400));
     CHECK(r.out.state == FFR_ST_EXIT);
     r.in.line = 1;
-    tick(&r);
-    tick(&r);
-    tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
     r.in.line = 0;
     CHECK((r.out.flags & FFR_FLAG_IN_ROOM) == 0);
-    CHECK(run_until_state(&r, FFR_ST_HOMING, 400));
+    CHECK(rig_run_until_state(&r, FFR_ST_HOMING, 400));
     CHECK(r.out.rooms_searched == 1);
     /* the home circle: stop just past it */
     for (i = 0; i < 40; ++i) {
-        tick(&r);
+        rig_tick(&r);
     }
     r.in.line = 1;
-    tick(&r);
-    tick(&r);
-    tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
     r.in.line = 0;
-    CHECK(run_until_state(&r, FFR_ST_DONE, 400));
+    CHECK(rig_run_until_state(&r, FFR_ST_DONE, 400));
     CHECK((r.out.flags & FFR_FLAG_DONE) != 0);
-    tick(&r);
+    rig_tick(&r);
     CHECK(r.out.pwm[0] == 0 && r.out.pwm[1] == 0 && r.out.fan == 0);
 }
 
@@ -229,23 +163,23 @@ static void no_flame_anywhere(void)
     cfg.route_len = 2;
     rig_init(&r, &cfg);
     r.in.start = 1;
-    tick(&r);
+    rig_tick(&r);
     r.in.line = 1;
-    tick(&r);
-    tick(&r);
-    tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
     r.in.line = 0;
-    CHECK(run_until_state(&r, FFR_ST_SCAN, 400));
+    CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 400));
     /* a full turn with no flame: leave the room */
-    CHECK(run_until_state(&r, FFR_ST_EXIT, 2000));
+    CHECK(rig_run_until_state(&r, FFR_ST_EXIT, 2000));
     CHECK((r.out.flags & FFR_FLAG_FLAME_SEEN) == 0);
-    CHECK(run_until_driving(&r, 400));
+    CHECK(rig_run_until_driving(&r, 400));
     r.in.line = 1;
-    tick(&r);
-    tick(&r);
-    tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
     r.in.line = 0;
-    CHECK(run_until_state(&r, FFR_ST_FAILED, 400));
+    CHECK(rig_run_until_state(&r, FFR_ST_FAILED, 400));
     CHECK(r.out.fail_code == FFR_FAIL_NO_FLAME);
     CHECK(r.out.pwm[0] == 0 && r.out.pwm[1] == 0);
 }
@@ -259,7 +193,7 @@ static void bad_room_number(void)
     cfg.route[0].arg = 9;
     rig_init(&r, &cfg);
     r.in.start = 1;
-    tick(&r);
+    rig_tick(&r);
     CHECK(r.out.state == FFR_ST_FAILED);
     CHECK(r.out.fail_code == FFR_FAIL_BAD_ROUTE);
 }

@@ -5,54 +5,8 @@
  * seen through the door left alone.
  */
 #include "ffr_internal.h"
+#include "rig.h"
 #include "unit.h"
-
-typedef struct {
-    ffr_state_t st;
-    ffr_inputs_t in;
-    ffr_outputs_t out;
-    float enc_f[2];
-} rig_t;
-
-static void rig_init(rig_t *r, const ffr_config_t *cfg)
-{
-    int i;
-    ffr_init(&r->st, cfg);
-    r->in.t_ms = 0;
-    r->in.seq = 0;
-    r->in.enc[0] = r->in.enc[1] = 0;
-    r->enc_f[0] = r->enc_f[1] = 0.0f;
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        r->in.ir_mv[i] = 0;
-    }
-    r->in.flame[0] = r->in.flame[1] = 20;
-    r->in.line = 0;
-    r->in.start = 0;
-}
-
-static void tick(rig_t *r)
-{
-    int i;
-    ffr_step(&r->st, &r->in, &r->out);
-    for (i = 0; i < 2; ++i) {
-        r->enc_f[i] += (float)r->out.pwm[i] * 0.012f;
-        r->in.enc[i] = (int32_t)r->enc_f[i];
-    }
-    r->in.t_ms += 10u;
-    r->in.seq += 1u;
-}
-
-static int run_until_state(rig_t *r, uint8_t state, int max_ticks)
-{
-    int i;
-    for (i = 0; i < max_ticks; ++i) {
-        tick(r);
-        if (r->out.state == state) {
-            return 1;
-        }
-    }
-    return 0;
-}
 
 static void openings_by_the_rear_ranger(void)
 {
@@ -147,23 +101,23 @@ static void enter_and_scan(rig_t *r, ffr_config_t *cfg, float flame_deg, float p
     rig_init(r, cfg);
     r->in.start = 1;
     for (i = 0; i < 21; ++i) {
-        tick(r);
+        rig_tick(r);
     }
     r->in.line = 1;
-    tick(r);
-    tick(r);
-    tick(r);
-    tick(r);
+    rig_tick(r);
+    rig_tick(r);
+    rig_tick(r);
+    rig_tick(r);
     r->in.line = 0;
-    CHECK(run_until_state(r, FFR_ST_SCAN, 400));
+    CHECK(rig_run_until_state(r, FFR_ST_SCAN, 400));
     for (i = 0; i < 600 && r->out.state == FFR_ST_SCAN; ++i) {
         float deg = r->st.odo.heading_rad / FFR_DEG - flame_deg;
         float s = deg > -20.0f && deg < 20.0f ? peak * (1.0f - deg * deg / 400.0f) : 20.0f;
         r->in.flame[0] = r->in.flame[1] = (uint16_t)(s > 20.0f ? s : 20.0f);
-        tick(r);
+        rig_tick(r);
     }
     r->in.flame[0] = r->in.flame[1] = (uint16_t)peak;
-    CHECK(run_until_state(r, FFR_ST_APPROACH, 400));
+    CHECK(rig_run_until_state(r, FFR_ST_APPROACH, 400));
 }
 
 static void door_wall_guard_stops_by_the_jamb(void)
@@ -178,7 +132,7 @@ static void door_wall_guard_stops_by_the_jamb(void)
     x0 = r.st.odo.x_mm;
     y0 = r.st.odo.y_mm;
     for (i = 0; i < 400 && r.out.state == FFR_ST_APPROACH; ++i) {
-        tick(&r);
+        rig_tick(&r);
     }
     /* stopped with no line and no ranger seeing anything: the guard, with the
      * flame near, so the fans go on */
@@ -198,7 +152,7 @@ static void flame_beyond_the_door_is_left_alone(void)
      * at the wall with the flame still far, so it is not in this room */
     enter_and_scan(&r, &cfg, 125.0f, 300.0f);
     for (i = 0; i < 600 && r.out.state == FFR_ST_APPROACH; ++i) {
-        tick(&r);
+        rig_tick(&r);
     }
     CHECK(r.out.state == FFR_ST_TO_DOOR);
     CHECK(r.out.fan == 0 && (r.out.flags & FFR_FLAG_EXTINGUISHED) == 0);
@@ -207,25 +161,25 @@ static void flame_beyond_the_door_is_left_alone(void)
     /* approaching, the line sensor meets the doorway line it came in by (a
      * flame seen through the door): no fans, back out and search on */
     enter_and_scan(&r, &cfg, 120.0f, 900.0f);
-    tick(&r);
+    rig_tick(&r);
     r.st.odo.x_mm = r.st.room.line_x_mm - cfg.line_sensor_x_mm * ffr_cosf(r.st.odo.heading_rad);
     r.st.odo.y_mm = r.st.room.line_y_mm - cfg.line_sensor_x_mm * ffr_sinf(r.st.odo.heading_rad);
     r.in.line = 1;
-    tick(&r);
-    tick(&r);
-    tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
     r.in.line = 0;
     CHECK(r.out.state == FFR_ST_TO_DOOR);
     CHECK(r.out.fan == 0 && r.st.room.flame_found == 0);
     /* the same line deep in the room is the candle circle: fans on */
     enter_and_scan(&r, &cfg, 60.0f, 900.0f);
     for (i = 0; i < 20; ++i) {
-        tick(&r);
+        rig_tick(&r);
     }
     r.in.line = 1;
-    tick(&r);
-    tick(&r);
-    tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
+    rig_tick(&r);
     r.in.line = 0;
     CHECK(r.out.state == FFR_ST_EXTINGUISH);
 }
@@ -241,13 +195,13 @@ static void flame_dark_level_is_learned(void)
     for (i = 0; i < 400; ++i) {
         r.in.flame[0] = (uint16_t)(70 + (i % 7) - 3);
         r.in.flame[1] = (uint16_t)(70 + (i % 5) - 2);
-        tick(&r);
+        rig_tick(&r);
     }
     CHECK(r.st.flame_dark > 132.0f && r.st.flame_dark <= 140.0f); /* low by at most the noise */
     /* a flame coming into view does not raise it */
     for (i = 0; i < 200; ++i) {
         r.in.flame[0] = r.in.flame[1] = 900;
-        tick(&r);
+        rig_tick(&r);
     }
     CHECK(r.st.flame_dark > 132.0f && r.st.flame_dark <= 140.0f); /* low by at most the noise */
 }
