@@ -14,13 +14,12 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import os
 import sys
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, NoReturn
 
+from harness.atomic import write_text_atomic
 from sim_plant.errors import FfrInputError
 
 # The paper's Table 1 (its robot, its parameters).
@@ -116,26 +115,6 @@ def build_parser() -> argparse.ArgumentParser:
     from harness.sweep_cli import add_sweep_parser
     add_sweep_parser(sub)
     return p
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
-
-
-def _write_atomic(path: str, text: str) -> None:
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=p.parent, prefix=f".{p.name}.")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0600; outputs are ordinary files
-        os.replace(tmp, p)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
 
 
 def _scenarios(args: argparse.Namespace, rooms: Sequence[int | None]) -> list[Any]:
@@ -236,7 +215,7 @@ def _execute_b2b(args: argparse.Namespace) -> int:
         if args.json == "-":
             sys.stdout.write(text)
         else:
-            _write_atomic(args.json, text)
+            write_text_atomic(args.json, text)
     return EXIT_OK if rep.identical else EXIT_MISSION
 
 
@@ -286,7 +265,7 @@ def _execute(args: argparse.Namespace) -> int:
         if args.json == "-":
             sys.stdout.write(text)
         else:
-            _write_atomic(args.json, text)
+            write_text_atomic(args.json, text)
     if args.plot:
         from harness.plot import save_missions
         save_missions(args.plot, missions)

@@ -3,8 +3,6 @@ the firmware's state, wall contacts."""
 
 from __future__ import annotations
 
-import os
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -15,6 +13,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.patches import Circle, Polygon  # noqa: E402
 
+from harness.atomic import atomic_path  # noqa: E402
 from harness.firmware_abi import STATE_NAMES  # noqa: E402
 from harness.loop import I_CONTACT, I_STATE, Trace  # noqa: E402
 from harness.scenario import Scenario  # noqa: E402
@@ -91,17 +90,8 @@ def save_missions(path: str | Path, missions: Sequence[tuple[Scenario, Trace, Mi
     if handles:
         fig.legend(handles, labels, loc="lower center", ncol=min(6, len(labels)), fontsize=8)
     fig.tight_layout(rect=(0, 0.04, 1, 1))
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(suffix=p.suffix or ".png", dir=p.parent)
-    os.close(fd)
     try:
-        fig.savefig(tmp, dpi=110)
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)  # mkstemp makes 0600; outputs are ordinary files
-        os.replace(tmp, p)
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=110, format=Path(path).suffix.lstrip(".") or "png")
     finally:
         plt.close(fig)
-        if os.path.exists(tmp):
-            os.unlink(tmp)

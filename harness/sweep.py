@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from harness.atomic import write_bytes_atomic
 from sim_plant.errors import FfrInputError
 
 ROW_FIELDS = ["id", "room", "candle_x", "candle_y", "seed", "noise", "outcome", "success", "detail",
@@ -273,20 +274,6 @@ def columns(rows: Sequence[dict[str, Any]]) -> list[str]:
     return ROW_FIELDS[:-1] + extra + ["replay"]
 
 
-def write_atomic_bytes(path: str | Path, data: bytes) -> None:
-    import tempfile
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=p.parent, prefix=f".{p.name}.")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-        os.replace(tmp, p)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-
-
 def write_results(path: str | Path, rows: Sequence[dict[str, Any]]) -> None:
     """CSV (``.csv``) or Parquet (``.parquet``, needs pyarrow), written atomically."""
     cols = columns(rows)
@@ -296,14 +283,14 @@ def write_results(path: str | Path, rows: Sequence[dict[str, Any]]) -> None:
         table = pa.table({c: [r.get(c) for r in rows] for c in cols})
         buf = pa.BufferOutputStream()
         pq.write_table(table, buf)
-        write_atomic_bytes(path, buf.getvalue().to_pybytes())
+        write_bytes_atomic(path, buf.getvalue().to_pybytes())
         return
     out = io.StringIO()
     w = csv.DictWriter(out, fieldnames=cols, lineterminator="\n")
     w.writeheader()
     for r in rows:
         w.writerow({c: ("" if r.get(c) is None else r.get(c)) for c in cols})
-    write_atomic_bytes(path, out.getvalue().encode())
+    write_bytes_atomic(path, out.getvalue().encode())
 
 
 def read_results(path: str | Path) -> list[dict[str, Any]]:
@@ -429,7 +416,7 @@ def plot(path: str | Path, rows: Sequence[dict[str, Any]], params: Sequence[Para
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=90)
     plt.close(fig)
-    write_atomic_bytes(path, buf.getvalue())
+    write_bytes_atomic(path, buf.getvalue())
 
 
 def timed_execute(jobs: Sequence[dict[str, Any]], scheduler: str | None, workers: int | None,

@@ -117,7 +117,8 @@ def _check(args: argparse.Namespace) -> None:
 
 def run_sweep(args: argparse.Namespace) -> int:
     from harness import sweep as sw
-    from harness.cli import UsageError, _write_atomic
+    from harness.atomic import write_text_atomic
+    from harness.cli import UsageError
 
     _check(args)
     spec = sw.SweepSpec(
@@ -151,7 +152,7 @@ def run_sweep(args: argparse.Namespace) -> int:
         if args.json == "-":
             sys.stdout.write(body)
         else:
-            _write_atomic(args.json, body)
+            write_text_atomic(args.json, body)
     if args.min_success is not None and rate < args.min_success:
         return 1
     return 0

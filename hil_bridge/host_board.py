@@ -19,13 +19,13 @@ from __future__ import annotations
 import contextlib
 import os
 import select
-import signal
 import subprocess
 import time
 from pathlib import Path
 from typing import IO
 
 from harness.links.base import LinkError
+from hil_bridge.child_process import describe_exit, stop_process
 from hil_bridge.options import WireOptions, parse_url
 from hil_bridge.serial_link import SerialLink
 from hil_bridge.wire_link import WireLink
@@ -82,30 +82,11 @@ class BoardProcess:
         return self.proc.pid
 
     def gone(self, wait_s: float = 0.0) -> str | None:
-        rc = self.proc.poll()
-        if rc is None and wait_s > 0:
-            with contextlib.suppress(subprocess.TimeoutExpired):
-                rc = self.proc.wait(timeout=wait_s)
-        if rc is None:
-            return None
-        if rc < 0:
-            try:
-                name = signal.Signals(-rc).name
-            except ValueError:
-                name = f"signal {-rc}"
-            return f"board process {self.proc.pid} killed by {name}"
-        return f"board process {self.proc.pid} exited with status {rc}"
+        return describe_exit(self.proc, f"board process {self.proc.pid}", wait_s)
 
     def stop(self) -> None:
         p = self.proc
-        for step in (self._close_stdin, p.terminate, p.kill):
-            if p.poll() is not None:
-                break
-            step()
-            try:
-                p.wait(timeout=1.0)
-            except subprocess.TimeoutExpired:
-                continue
+        stop_process(p, (self._close_stdin, p.terminate, p.kill), wait_s=1.0)
         if p.stdout is not None:
             p.stdout.close()
         if self._log is not None:

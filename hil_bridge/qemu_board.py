@@ -16,7 +16,6 @@ and Ctrl-C reaches the CLI's ``finally`` that closes the link.
 
 from __future__ import annotations
 
-import contextlib
 import ctypes
 import re
 import shutil
@@ -29,6 +28,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from harness.links.base import LinkError
+from hil_bridge.child_process import describe_exit, stop_process
 from hil_bridge.options import WireOptions, parse_url
 from hil_bridge.serial_link import SerialLink
 
@@ -79,14 +79,7 @@ class QemuBoard:
                                      preexec_fn=_die_with_parent)  # noqa: PLW1509 - prctl only
 
     def gone(self, wait_s: float = 0.0) -> str | None:
-        rc = self.proc.poll()
-        if rc is None and wait_s > 0:
-            with contextlib.suppress(subprocess.TimeoutExpired):
-                rc = self.proc.wait(timeout=wait_s)
-        if rc is None:
-            return None
-        how = f"killed by {signal.Signals(-rc).name}" if rc < 0 else f"exited with status {rc}"
-        return f"qemu-system-arm ({self.machine}, pid {self.proc.pid}) {how}"
+        return describe_exit(self.proc, f"qemu-system-arm ({self.machine}, pid {self.proc.pid})", wait_s)
 
     def profile(self) -> StepProfile | None:
         try:
@@ -100,13 +93,7 @@ class QemuBoard:
         return StepProfile(steps, total * INSN_PER_COUNT / steps, worst * INSN_PER_COUNT)
 
     def stop(self) -> None:
-        p = self.proc
-        for step in (p.terminate, p.kill):
-            if p.poll() is not None:
-                break
-            step()
-            with contextlib.suppress(subprocess.TimeoutExpired):
-                p.wait(timeout=2.0)
+        stop_process(self.proc, (self.proc.terminate, self.proc.kill), wait_s=2.0)
         if self._log is not None:
             self._log.close()
             self._log = None

@@ -23,6 +23,11 @@ void ffr_stop(ffr_state_t *st)
     st->cmd_w_rad_s = 0.0f;
 }
 
+float ffr_stopping_speed(float remaining_mm, float top)
+{
+    return ffr_clampf(2.0f * remaining_mm + 60.0f, 60.0f, top);
+}
+
 void ffr_drive_heading(ffr_state_t *st, float heading, float speed)
 {
     st->cmd_v_mm_s = speed;

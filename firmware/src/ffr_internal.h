@@ -91,6 +91,9 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in);
 void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed);
 void ffr_drive_heading(ffr_state_t *st, float heading, float speed);
 void ffr_stop(ffr_state_t *st);
+/* Speed (mm/s) for `remaining_mm` to a stopping point: slows into the stop
+ * so it is short, never below a crawl that still overcomes friction. */
+float ffr_stopping_speed(float remaining_mm, float top);
 
 /* route.c: the route program interpreter. */
 void ffr_route_begin(ffr_state_t *st, uint8_t pc);

@@ -271,7 +271,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
             return 0;
         }
         ffr_drive_heading(st, r->entry_heading_rad + scan_room_offset(st),
-                          ffr_clampf(2.0f * (cfg->room_entry_mm - moved) + 60.0f, 60.0f, cfg->room_speed_mm_s));
+                          ffr_stopping_speed(cfg->room_entry_mm - moved, cfg->room_speed_mm_s));
         return 0;
     case RP_SCAN: {
         float turned = ffr_absf(st->odo.heading_rad - r->start_heading_rad);
@@ -396,7 +396,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         }
         /* point the tail at the scan point while backing up */
         ffr_drive_heading(st, closest(st->odo.heading_rad, ffr_atan2f(-dy, -dx)),
-                          -ffr_clampf(2.0f * dist + 60.0f, 60.0f, cfg->room_speed_mm_s));
+                          -ffr_stopping_speed(dist, cfg->room_speed_mm_s));
         return 0;
     }
     case RP_LEAVE_TURN: {
@@ -425,7 +425,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
             return 1;
         }
         ffr_drive_heading(st, st->route.heading_ref_rad,
-                          ffr_clampf(2.0f * (cfg->room_exit_mm - moved) + 60.0f, 60.0f, cfg->room_speed_mm_s));
+                          ffr_stopping_speed(cfg->room_exit_mm - moved, cfg->room_speed_mm_s));
         return 0;
     default:
         ffr_fail(st, FFR_FAIL_BAD_ROUTE);

@@ -71,6 +71,21 @@ static void next(ffr_state_t *st)
     begin_current(st);
 }
 
+/* The last stretch of a step (past an opening's wall end, past the home
+ * line): straight on the held heading to the goal. 1 when there, or when a
+ * wall ahead ends it first. */
+static int drive_to_goal(ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    if (st->odo.dist_mm >= st->route.goal_mm || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
+        ffr_stop(st);
+        return 1;
+    }
+    ffr_drive_heading(st, st->route.heading_ref_rad,
+                      ffr_stopping_speed(st->route.goal_mm - st->odo.dist_mm, cfg->cruise_speed_mm_s));
+    return 0;
+}
+
 static int event_fired(ffr_state_t *st, const ffr_step_t *s)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -112,16 +127,9 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
                 return;
             }
         }
-        if (st->odo.dist_mm >= st->route.goal_mm
-            || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
-            ffr_stop(st);
+        if (drive_to_goal(st)) {
             next(st);
-            return;
         }
-        /* slow down into the turn so the stop is short */
-        ffr_drive_heading(st, st->route.heading_ref_rad,
-                          ffr_clampf(2.0f * (st->route.goal_mm - st->odo.dist_mm) + 60.0f, 60.0f,
-                                     cfg->cruise_speed_mm_s));
         return;
     case FFR_OP_TURN:
         ffr_stop(st);
@@ -139,7 +147,7 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
             next(st);
             return;
         }
-        ffr_drive_corridor(st, s->side, ffr_clampf(2.0f * left + 60.0f, 60.0f, cfg->cruise_speed_mm_s));
+        ffr_drive_corridor(st, s->side, ffr_stopping_speed(left, cfg->cruise_speed_mm_s));
         return;
     }
     case FFR_OP_ROOM:
@@ -162,16 +170,10 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
                 return;
             }
         }
-        if (st->odo.dist_mm >= st->route.goal_mm
-            || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
-            ffr_stop(st);
+        if (drive_to_goal(st)) {
             st->state = FFR_ST_DONE;
             st->flags |= FFR_FLAG_DONE;
-            return;
         }
-        ffr_drive_heading(st, st->route.heading_ref_rad,
-                          ffr_clampf(2.0f * (st->route.goal_mm - st->odo.dist_mm) + 60.0f, 60.0f,
-                                     cfg->cruise_speed_mm_s));
         return;
     default:
         ffr_fail(st, FFR_FAIL_BAD_ROUTE);

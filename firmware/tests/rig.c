@@ -7,6 +7,14 @@ uint16_t rig_mv_for_mm(const ffr_config_t *cfg, float mm)
     return (uint16_t)(cfg->ir_k_mv_mm / (mm + cfg->ir_d0_mm) + cfg->ir_offset_mv + 0.5f);
 }
 
+void rig_no_walls(const ffr_config_t *cfg, float ir_mm[FFR_IR_COUNT])
+{
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        ir_mm[i] = FFR_IR_NONE(cfg);
+    }
+}
+
 void rig_init(rig_t *r, const ffr_config_t *cfg)
 {
     int i;

@@ -16,6 +16,8 @@ typedef struct {
 
 /* the GP2D12 reading (mV) for a wall mm away, by the firmware's own fit */
 uint16_t rig_mv_for_mm(const ffr_config_t *cfg, float mm);
+/* every ranger reads "no wall in range" */
+void rig_no_walls(const ffr_config_t *cfg, float ir_mm[FFR_IR_COUNT]);
 /* nothing in range, dark flame sensors, black floor, no start signal */
 void rig_init(rig_t *r, const ffr_config_t *cfg);
 /* one tick; checks the sequence number is echoed */

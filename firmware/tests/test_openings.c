@@ -1,4 +1,5 @@
 #include "ffr_internal.h"
+#include "rig.h"
 #include "unit.h"
 
 void suite_openings(void)
@@ -9,9 +10,7 @@ void suite_openings(void)
     float d = 0.0f;
     int i;
     ffr_config_default(&cfg);
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        ir[i] = FFR_IR_NONE(&cfg);
-    }
+    rig_no_walls(&cfg, ir);
     /* open from the start: no wall seen, so no opening (a corridor behind
      * a junction is not a door) */
     ffr_openings_reset(&op);

@@ -16,9 +16,7 @@ static void openings_by_the_rear_ranger(void)
     float d = 0.0f;
     int i;
     ffr_config_default(&cfg);
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        ir[i] = FFR_IR_NONE(&cfg);
-    }
+    rig_no_walls(&cfg, ir);
     /* a step that starts at the wall's end: the front ranger is already past
      * it, only the rear one sees the wall for 100 mm */
     ffr_openings_reset(&op);
@@ -48,11 +46,8 @@ static void far_hits_are_not_the_wall(void)
     ffr_config_t cfg;
     float ir[FFR_IR_COUNT];
     ffr_wall_t w;
-    int i;
     ffr_config_default(&cfg);
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        ir[i] = FFR_IR_NONE(&cfg);
-    }
+    rig_no_walls(&cfg, ir);
     /* the rear ranger sees the wall beside (230 mm), the front one looks into
      * an opening and hits a wall across it, 420 mm to the side */
     ir[FFR_IR_RR] = (230.0f - 70.0f) / 0.70710678f;

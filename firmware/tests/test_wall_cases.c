@@ -1,13 +1,6 @@
 #include "ffr_internal.h"
+#include "rig.h"
 #include "unit.h"
-
-static void none(float *ir, const ffr_config_t *cfg)
-{
-    int i;
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        ir[i] = FFR_IR_NONE(cfg);
-    }
-}
 
 void suite_wall_cases(void)
 {
@@ -38,7 +31,7 @@ void suite_wall_cases(void)
 
     /* sensed at a left corner: the front-left ranger now sees the wall
      * ahead, but the left wall was seen to end on the way in */
-    none(ir, &cfg);
+    rig_no_walls(&cfg, ir);
     ffr_openings_reset(&op);
     ir[FFR_IR_CF] = 130.0f;
     ir[FFR_IR_LF] = 212.0f;

@@ -1,4 +1,5 @@
 #include "ffr_internal.h"
+#include "rig.h"
 #include "unit.h"
 
 /* ranger reading for a straight wall: points p with n.p = c (n unit normal) */
@@ -19,11 +20,8 @@ void suite_wall_follow(void)
     ffr_config_t cfg;
     float ir[FFR_IR_COUNT];
     ffr_wall_t w;
-    int i;
     ffr_config_default(&cfg);
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        ir[i] = FFR_IR_NONE(&cfg);
-    }
+    rig_no_walls(&cfg, ir);
     /* a left wall 230 mm away, parallel */
     ir[FFR_IR_LF] = reading(&cfg, FFR_IR_LF, 0.0f, 1.0f, 230.0f);
     ir[FFR_IR_LR] = reading(&cfg, FFR_IR_LR, 0.0f, 1.0f, 230.0f);

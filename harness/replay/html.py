@@ -11,10 +11,10 @@ from __future__ import annotations
 import json
 import os
 import re
-import tempfile
 from importlib import resources
 from pathlib import Path
 
+from harness.atomic import write_text_atomic
 from harness.loop import Trace
 from harness.replay.data import DEFAULT_CHART_HZ, DEFAULT_FPS, ReplayData, build_replay
 from harness.scenario import Scenario
@@ -83,18 +83,8 @@ def check_target(path: str | Path) -> str | None:
 
 
 def write_html(path: str | Path, text: str) -> None:
-    """Write atomically: a temporary file beside the target, then a rename."""
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=p.parent, prefix=f".{p.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.chmod(tmp, 0o644)  # mkstemp makes it private; a replay is for sharing
-        os.replace(tmp, p)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+    # a replay is for sharing: readable by all, whatever the umask
+    write_text_atomic(path, text, mode=0o644)
 
 
 def save_replay(path: str | Path, scn: Scenario, trace: Trace, result: MissionResult,
