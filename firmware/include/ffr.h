@@ -246,14 +246,28 @@ typedef struct {
     int16_t case_turn_deg;         /* turn chosen by the wall case            */
     uint8_t phase;
     uint8_t pc;                    /* route program counter                   */
-    /* the followed wall's direction from how its distance changes with travel
-     * (drive.c): a window of travel on one side */
-    float win_s_mm;                /* odometry distance at the window's start */
-    float win_d_mm;                /* the wall's distance then                */
-    float win_h_rad;               /* the heading then                        */
-    int8_t win_side;               /* -1: no window                           */
-    uint8_t reserved[3];
+    uint8_t reserved[4];
 } ffr_route_state_t;
+
+/* The followed wall's direction measured from travel (wall_calibration.c):
+ * a window of straight-ish travel beside one wall, and what it teaches. */
+typedef struct {
+    float s0_mm;                   /* odometry distance at the window's start */
+    float h0_rad;                  /* heading at the window's start           */
+    float d0_mm;                   /* the wall's distance at its first tick   */
+    /* sums over the window's ticks, relative to its start: travel s, the
+     * wall's distance d (least squares of d on s), heading h, and a = h plus
+     * the two rangers' wall angle (constant along one straight wall) */
+    float sum_s, sum_d, sum_ss, sum_sd, sum_dd;
+    float sum_h;
+    float sum_a, sum_aa;
+    uint16_t n;                    /* ticks in the window                     */
+    int8_t side;                   /* -1: no window                           */
+    uint8_t reserved;
+    float bias_rad[2];             /* learned error of the two-ranger wall angle, L, R */
+    uint8_t bias_n[2];             /* windows that taught it (saturates)      */
+    uint8_t reserved2[2];
+} ffr_wall_cal_t;
 
 typedef struct {
     uint8_t phase;
@@ -279,6 +293,7 @@ typedef struct {
     ffr_line_counter_t lines;
     ffr_openings_t open;
     ffr_route_state_t route;
+    ffr_wall_cal_t wall_cal;
     ffr_room_state_t room;
     float ir_mm[FFR_IR_COUNT];     /* last calibrated ranges (ir_max_mm+1 = none) */
     uint32_t t_ms;

@@ -49,6 +49,16 @@ float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side
 /* Yaw rate (rad/s) that holds heading_ref. */
 float ffr_heading_hold_yaw(const ffr_config_t *cfg, float heading, float heading_ref);
 
+/* wall_calibration.c: the followed wall's direction from travel. */
+void ffr_wall_cal_reset(ffr_wall_cal_t *c);   /* everything, the learned tilts too */
+void ffr_wall_cal_restart(ffr_wall_cal_t *c); /* a new window; the tilts stay      */
+/* One tick beside the wall on `side` (w as measured, uncorrected). Returns a
+ * heading correction (rad) to take off odometry, 0 on most ticks. */
+float ffr_wall_cal_update(ffr_wall_cal_t *c, const ffr_config_t *cfg, const ffr_wall_t *w, int side,
+                          float heading_rad, float dist_mm);
+/* Take the side's learned tilt off a two-ranger wall angle. */
+void ffr_wall_cal_correct(const ffr_wall_cal_t *c, ffr_wall_t *w, int side);
+
 /* wall_cases.c (Fig. 9): the six wall cases and the turn each asks for. */
 typedef enum {
     FFR_CASE_CORRIDOR = 0,     /* walls both sides, open ahead: go on      */

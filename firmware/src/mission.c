@@ -30,11 +30,8 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->route.case_turn_deg = 0;
     st->route.phase = 0;
     st->route.pc = 0;
-    st->route.win_s_mm = 0.0f;
-    st->route.win_d_mm = 0.0f;
-    st->route.win_h_rad = 0.0f;
-    st->route.win_side = -1;
-    st->route.reserved[0] = st->route.reserved[1] = st->route.reserved[2] = 0;
+    st->route.reserved[0] = st->route.reserved[1] = st->route.reserved[2] = st->route.reserved[3] = 0;
+    ffr_wall_cal_reset(&st->wall_cal);
     st->room.phase = 0;
     st->room.room = 0;
     st->room.attempts = 0;

@@ -22,7 +22,7 @@ static void begin_current(ffr_state_t *st)
     s = cur(st);
     st->route.phase = PH_DRIVE;
     st->route.start_mm = st->odo.dist_mm;
-    st->route.win_side = -1;
+    ffr_wall_cal_restart(&st->wall_cal);
     if (s->op == FFR_OP_TURN && s->param == 0) {
         /* decided by the wall case, from what the last leg saw: before the reset */
         st->route.case_turn_deg = ffr_wall_case_turn(ffr_wall_case_sensed(cfg, st->ir_mm, &st->open), s->side);
@@ -35,6 +35,14 @@ static void begin_current(ffr_state_t *st)
     case FFR_OP_TURN: {
         int16_t deg = s->param != 0 ? s->param : st->route.case_turn_deg;
         st->route.target_rad = st->route.heading_ref_rad + (float)deg * FFR_DEG;
+#ifdef FFR_DEBUG_CAL
+        {
+            extern int printf(const char *, ...);
+            printf("TURN pc %u t %u ref %.2f odo %.2f deg %d biasL %.2f biasR %.2f\n", st->route.pc, st->t_ms,
+                   (double)(st->route.heading_ref_rad / FFR_DEG), (double)(st->odo.heading_rad / FFR_DEG), deg,
+                   (double)(st->wall_cal.bias_rad[0] / FFR_DEG), (double)(st->wall_cal.bias_rad[1] / FFR_DEG));
+        }
+#endif
         st->state = FFR_ST_TURN;
         break;
     }

@@ -10,6 +10,7 @@ int main(void)
     suite_speed_control();
     suite_wall_follow();
     suite_wall_cases();
+    suite_wall_calibration();
     suite_line_counter();
     suite_openings();
     suite_mission();

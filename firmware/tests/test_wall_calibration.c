@@ -1,0 +1,287 @@
+/*
+ * wall_calibration.c: the wall's direction from travel corrects odometry's
+ * heading and learns each side's two-ranger tilt. First the behaviour alone
+ * with synthetic wall estimates, then closed loop: the whole firmware beside
+ * one straight wall, its rangers' readings computed from the true pose, with
+ * a pair of parts at opposite ends of the datasheet's offset spread.
+ */
+#include "ffr_internal.h"
+#include "rig.h"
+#include "unit.h"
+
+/* Feed `ticks` ticks of travel, `step` mm each, beside a straight wall that
+ * runs along a right angle of the world. The robot's true heading is `rel`
+ * to the right of the wall (the wall runs `rel` to the left of the heading);
+ * odometry's heading is off the truth by `*err`, and what the update returns
+ * is taken off it, as ffr_drive_corridor does. The two rangers' angle reads
+ * the wall's true angle to the heading plus `tilt`. Returns the corrections'
+ * sum. */
+static float feed(ffr_wall_cal_t *c, const ffr_config_t *cfg, int side, float *err, float *s, float rel,
+                  float tilt, int ticks, float step)
+{
+    float total = 0.0f;
+    int i;
+    for (i = 0; i < ticks; ++i, *s += step) {
+        ffr_wall_t w;
+        float corr;
+        w.valid = 1;
+        w.angle_valid = 1;
+        /* away from a left wall that runs to the left of the path, toward a right one */
+        w.dist_mm = 230.0f + (side == FFR_SIDE_LEFT ? 1.0f : -1.0f) * rel * (*s - 1000.0f);
+        w.angle_rad = rel + tilt;
+        corr = ffr_wall_cal_update(c, cfg, &w, side, -rel + *err, *s);
+        *err -= corr;
+        total += corr;
+    }
+    return total;
+}
+
+static void odometry_heading_error_is_taken_off(void)
+{
+    ffr_config_t cfg;
+    ffr_wall_cal_t c;
+    float err = -10.0f * FFR_DEG, s = 0.0f, corr;
+    ffr_config_default(&cfg);
+    ffr_wall_cal_reset(&c);
+    /* parallel to a wall that odometry puts 10 degrees off a right angle */
+    corr = feed(&c, &cfg, FFR_SIDE_RIGHT, &err, &s, 0.0f, 0.0f, 20, 3.0f);
+    CHECK(corr == 0.0f); /* 60 mm: no window completed yet */
+    corr = feed(&c, &cfg, FFR_SIDE_RIGHT, &err, &s, 0.0f, 0.0f, 700, 3.0f);
+    /* after 2.1 m, brought to the dead zone's edge (3 degrees), not past it */
+    CHECK(corr < -6.8f * FFR_DEG);
+    CHECK_NEAR(err / FFR_DEG, -3.0, 0.1);
+    /* the pair measured the wall truly: no tilt learned */
+    CHECK_NEAR(c.bias_rad[FFR_SIDE_RIGHT] / FFR_DEG, 0.0, 0.05);
+    CHECK(c.bias_n[FFR_SIDE_RIGHT] > 0 && c.bias_n[FFR_SIDE_LEFT] == 0);
+    /* driving 5 degrees toward the wall makes no difference to either */
+    ffr_wall_cal_reset(&c);
+    err = 10.0f * FFR_DEG;
+    feed(&c, &cfg, FFR_SIDE_RIGHT, &err, &s, 5.0f * FFR_DEG, 0.0f, 700, 3.0f);
+    CHECK_NEAR(err / FFR_DEG, 3.0, 0.1);
+    CHECK_NEAR(c.bias_rad[FFR_SIDE_RIGHT] / FFR_DEG, 0.0, 0.05);
+}
+
+static void the_heading_error_is_left_alone_when_alignment_is_off(void)
+{
+    ffr_config_t cfg;
+    ffr_wall_cal_t c;
+    float err = 10.0f * FFR_DEG, s = 0.0f;
+    ffr_config_default(&cfg);
+    cfg.wall_align_gain = 0.0f;
+    ffr_wall_cal_reset(&c);
+    CHECK(feed(&c, &cfg, FFR_SIDE_LEFT, &err, &s, 0.0f, 3.0f * FFR_DEG, 300, 3.0f) == 0.0f);
+    /* the tilt is still learned: it is about the parts, not odometry */
+    CHECK_NEAR(c.bias_rad[FFR_SIDE_LEFT] / FFR_DEG, 3.0, 0.05);
+}
+
+static void a_pairs_tilt_is_learned_per_side(void)
+{
+    ffr_config_t cfg;
+    ffr_wall_cal_t c;
+    ffr_wall_t w;
+    float err = 0.0f, s = 0.0f;
+    ffr_config_default(&cfg);
+    ffr_wall_cal_reset(&c);
+    /* the robot drives 4 degrees off a left wall, the left pair reads 5 degrees more */
+    feed(&c, &cfg, FFR_SIDE_LEFT, &err, &s, 4.0f * FFR_DEG, 5.0f * FFR_DEG, 400, 3.0f);
+    CHECK_NEAR(c.bias_rad[FFR_SIDE_LEFT] / FFR_DEG, 5.0, 0.1);
+    CHECK(err == 0.0f); /* odometry was right: left alone */
+    /* the right pair is unaffected, then learns its own */
+    CHECK(c.bias_rad[FFR_SIDE_RIGHT] == 0.0f);
+    feed(&c, &cfg, FFR_SIDE_RIGHT, &err, &s, 0.0f, -3.0f * FFR_DEG, 400, 3.0f);
+    CHECK_NEAR(c.bias_rad[FFR_SIDE_RIGHT] / FFR_DEG, -3.0, 0.1);
+    CHECK_NEAR(c.bias_rad[FFR_SIDE_LEFT] / FFR_DEG, 5.0, 0.1);
+    /* and comes off that side's angle only, when both rangers measured it */
+    w.valid = 1;
+    w.angle_valid = 1;
+    w.dist_mm = 230.0f;
+    w.angle_rad = 1.0f * FFR_DEG;
+    ffr_wall_cal_correct(&c, &w, FFR_SIDE_LEFT);
+    CHECK_NEAR(w.angle_rad / FFR_DEG, -4.0, 0.1);
+    w.angle_rad = 1.0f * FFR_DEG;
+    ffr_wall_cal_correct(&c, &w, FFR_SIDE_RIGHT);
+    CHECK_NEAR(w.angle_rad / FFR_DEG, 4.0, 0.1);
+    w.angle_valid = 0;
+    w.angle_rad = 1.0f * FFR_DEG;
+    ffr_wall_cal_correct(&c, &w, FFR_SIDE_RIGHT);
+    CHECK_NEAR(w.angle_rad / FFR_DEG, 1.0, 1e-6);
+    /* a new window keeps it, a reset forgets it */
+    ffr_wall_cal_restart(&c);
+    CHECK_NEAR(c.bias_rad[FFR_SIDE_LEFT] / FFR_DEG, 5.0, 0.1);
+    ffr_wall_cal_reset(&c);
+    CHECK(c.bias_rad[0] == 0.0f && c.bias_rad[1] == 0.0f && c.bias_n[0] == 0 && c.bias_n[1] == 0);
+}
+
+static void gaps_turns_and_other_walls_teach_nothing(void)
+{
+    ffr_config_t cfg;
+    ffr_wall_cal_t c;
+    ffr_wall_t w;
+    float h = 12.0f * FFR_DEG, s = 0.0f, err;
+    int i;
+    ffr_config_default(&cfg);
+    ffr_wall_cal_reset(&c);
+    /* one ranger every third tick: never a whole window */
+    w.valid = 1;
+    w.dist_mm = 230.0f;
+    w.angle_rad = 0.0f;
+    for (i = 0; i < 600; ++i, s += 3.0f) {
+        w.angle_valid = (uint8_t)(i % 3 != 0);
+        CHECK(ffr_wall_cal_update(&c, &cfg, &w, FFR_SIDE_LEFT, h, s) == 0.0f);
+    }
+    CHECK(c.bias_n[FFR_SIDE_LEFT] == 0);
+    /* turning 1 degree every 10 mm: never 100 mm within 8 degrees */
+    w.angle_valid = 1;
+    for (i = 0; i < 600; ++i, s += 3.0f) {
+        h += 0.3f * FFR_DEG;
+        CHECK(ffr_wall_cal_update(&c, &cfg, &w, FFR_SIDE_LEFT, h, s) == 0.0f);
+    }
+    CHECK(c.bias_n[FFR_SIDE_LEFT] == 0);
+    /* standing still (a turn in place) completes no window */
+    ffr_wall_cal_restart(&c);
+    for (i = 0; i < 600; ++i) {
+        CHECK(ffr_wall_cal_update(&c, &cfg, &w, FFR_SIDE_LEFT, 10.0f * FFR_DEG, s) == 0.0f);
+    }
+    /* no side (heading hold) is no window */
+    CHECK(ffr_wall_cal_update(&c, &cfg, &w, FFR_SIDE_NONE, 0.0f, s) == 0.0f && c.side == -1);
+    /* the pair's line 20 degrees off the travel: two walls, not a tilt */
+    err = 0.0f;
+    feed(&c, &cfg, FFR_SIDE_LEFT, &err, &s, 0.0f, 20.0f * FFR_DEG, 300, 3.0f);
+    CHECK(c.bias_n[FFR_SIDE_LEFT] == 0);
+    /* 40 degrees off a right angle is not odometry's error */
+    err = 40.0f * FFR_DEG;
+    CHECK(feed(&c, &cfg, FFR_SIDE_LEFT, &err, &s, 0.0f, 0.0f, 300, 3.0f) == 0.0f);
+}
+
+/* ---- closed loop: the firmware beside a straight wall ------------------ */
+
+typedef struct {
+    rig_t r;
+    float x, y, th;      /* true pose, mm and rad */
+    int32_t enc_prev[2];
+    float wall_y;        /* a right wall along y = wall_y (< 0)       */
+    float offset_mv[FFR_IR_COUNT]; /* each part's reading error   */
+} world_t;
+
+static uint16_t ranger_mv(const world_t *wd, const ffr_config_t *cfg, int i)
+{
+    float c = ffr_cosf(wd->th), s = ffr_sinf(wd->th);
+    float my = wd->y + s * cfg->ir_x_mm[i] + c * cfg->ir_y_mm[i];
+    float uy = ffr_sinf(wd->th + cfg->ir_angle_deg[i] * FFR_DEG);
+    float d, mv;
+    if (uy > -0.05f) {
+        return 0; /* looking away from the wall: nothing in range */
+    }
+    d = (wd->wall_y - my) / uy;
+    if (d > 800.0f) {
+        return 0;
+    }
+    mv = cfg->ir_k_mv_mm / (d + cfg->ir_d0_mm) + cfg->ir_offset_mv + wd->offset_mv[i];
+    return (uint16_t)(mv + 0.5f);
+}
+
+static void world_tick(world_t *wd)
+{
+    const ffr_config_t *cfg = &wd->r.st.cfg;
+    const float mm_per_tick = 2.0f * FFR_PI * cfg->wheel_radius_mm / cfg->encoder_ticks_per_rev;
+    float dl, dr, ds, dth;
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        wd->r.in.ir_mv[i] = ranger_mv(wd, cfg, i);
+    }
+    rig_tick(&wd->r);
+    dl = (float)(wd->r.in.enc[0] - wd->enc_prev[0]) * mm_per_tick;
+    dr = (float)(wd->r.in.enc[1] - wd->enc_prev[1]) * mm_per_tick;
+    wd->enc_prev[0] = wd->r.in.enc[0];
+    wd->enc_prev[1] = wd->r.in.enc[1];
+    ds = 0.5f * (dl + dr);
+    dth = (dr - dl) / cfg->track_width_mm;
+    wd->x += ds * ffr_cosf(wd->th + 0.5f * dth);
+    wd->y += ds * ffr_sinf(wd->th + 0.5f * dth);
+    wd->th += dth;
+}
+
+/* Follow the right wall (nothing ahead ever) from the origin heading +x,
+ * odometry starting `odo_err_deg` off the truth; return after `ticks`. */
+static void follow_wall(world_t *wd, float front_mv, float rear_mv, float odo_err_deg, int ticks)
+{
+    ffr_config_t cfg;
+    int i;
+    ffr_config_default(&cfg);
+    cfg.route[0].op = FFR_OP_FOLLOW;
+    cfg.route[0].side = FFR_SIDE_RIGHT;
+    cfg.route[0].event = FFR_EV_FRONT;
+    cfg.route[1].op = FFR_OP_END;
+    cfg.route_len = 2;
+    rig_init(&wd->r, &cfg);
+    wd->x = wd->y = wd->th = 0.0f;
+    wd->enc_prev[0] = wd->enc_prev[1] = 0;
+    wd->wall_y = -cfg.wall_target_mm;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        wd->offset_mv[i] = 0.0f;
+    }
+    wd->offset_mv[FFR_IR_RF] = front_mv;
+    wd->offset_mv[FFR_IR_RR] = rear_mv;
+    world_tick(wd); /* primes odometry */
+    wd->r.st.odo.heading_rad = odo_err_deg * FFR_DEG;
+    wd->r.in.start = 1;
+    for (i = 0; i < ticks; ++i) {
+        world_tick(wd);
+    }
+}
+
+static void opposite_parts_no_longer_tilt_the_corridor_heading(void)
+{
+    world_t wd;
+    float ref_true_deg, tilt_deg;
+    /* the front part reads 120 mV high (near), the rear one 120 mV low (far):
+     * their line runs ~4 degrees off the wall, toward it ahead */
+    follow_wall(&wd, 120.0f, -120.0f, 0.0f, 1000);
+    CHECK(wd.r.out.state == FFR_ST_FOLLOW);
+    /* the robot drove ~3 m along the wall without touching it */
+    CHECK(wd.x > 2500.0f);
+    CHECK(wd.y > -120.0f && wd.y < 120.0f);
+    /* the tilt it learned is the pair's (positive: the line turns left of
+     * the wall, as a right wall nearer ahead does) */
+    tilt_deg = wd.r.st.wall_cal.bias_rad[FFR_SIDE_RIGHT] / FFR_DEG;
+    CHECK(tilt_deg > 3.0f && tilt_deg < 6.0f);
+    /* the corridor heading (what the next turn is measured from) runs along
+     * the wall within a degree; odometry is exact here, so truth = odometry */
+    ref_true_deg = wd.r.st.route.heading_ref_rad / FFR_DEG;
+    CHECK_NEAR(ref_true_deg, 0.0, 1.0);
+    CHECK_NEAR(wd.th / FFR_DEG, 0.0, 1.5);
+    /* without the correction the corridor heading would hold the tilt: the
+     * measured angle, tilt not taken off, is what it would follow */
+    {
+        ffr_wall_t w = ffr_wall_estimate(&wd.r.st.cfg, wd.r.st.ir_mm, FFR_SIDE_RIGHT);
+        CHECK(w.angle_valid);
+        CHECK(ffr_absf(w.angle_rad / FFR_DEG - -wd.th / FFR_DEG) > 3.0f);
+    }
+}
+
+static void odometry_off_by_a_turn_is_brought_back_by_the_wall(void)
+{
+    world_t wd;
+    float err_deg;
+    /* odometry 9 degrees off (a scan's track slip), matched parts */
+    follow_wall(&wd, 0.0f, 0.0f, 9.0f, 1000);
+    err_deg = (wd.r.st.odo.heading_rad - wd.th) / FFR_DEG;
+    /* brought within the dead zone of 3 degrees (from 9) */
+    CHECK(err_deg > -3.3f && err_deg < 3.3f);
+    CHECK(wd.x > 2500.0f);
+    /* and with opposite parts as well */
+    follow_wall(&wd, -120.0f, 120.0f, -9.0f, 1000);
+    err_deg = (wd.r.st.odo.heading_rad - wd.th) / FFR_DEG;
+    CHECK(err_deg > -3.3f && err_deg < 3.3f);
+    CHECK(wd.r.st.wall_cal.bias_rad[FFR_SIDE_RIGHT] / FFR_DEG < -3.0f);
+}
+
+void suite_wall_calibration(void)
+{
+    odometry_heading_error_is_taken_off();
+    the_heading_error_is_left_alone_when_alignment_is_off();
+    a_pairs_tilt_is_learned_per_side();
+    gaps_turns_and_other_walls_teach_nothing();
+    opposite_parts_no_longer_tilt_the_corridor_heading();
+    odometry_off_by_a_turn_is_brought_back_by_the_wall();
+}
