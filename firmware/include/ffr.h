@@ -249,6 +249,17 @@ typedef struct {
     uint8_t reserved[4];
 } ffr_route_state_t;
 
+/* One side ranger's hits in odometry's frame over a stretch of travel
+ * (wall_direction.c): the line through them is the wall's direction. */
+typedef struct {
+    float s0_mm;                   /* odometry distance at the window's start */
+    float h0_rad;                  /* heading then                            */
+    float x0_mm, y0_mm;            /* the first hit: sums are relative to it  */
+    float sx, sy, sxx, syy, sxy;
+    uint16_t n;                    /* hits in the window (0: none yet)        */
+    uint8_t reserved[2];
+} ffr_hit_window_t;
+
 /* The followed wall's direction measured from travel (wall_calibration.c):
  * a window of straight-ish travel beside one wall, and what it teaches. */
 typedef struct {
@@ -264,6 +275,7 @@ typedef struct {
     uint16_t n;                    /* ticks in the window                     */
     int8_t side;                   /* -1: no window                           */
     uint8_t reserved;
+    ffr_hit_window_t hits[4];      /* LF, RF, LR, RR (ranger index - 1)       */
     float bias_rad[2];             /* learned error of the two-ranger wall angle, L, R */
     uint8_t bias_n[2];             /* windows that taught it (saturates)      */
     uint8_t reserved2[2];

@@ -7,6 +7,16 @@
  */
 #include "ffr_internal.h"
 
+/* odometry heading correction from a wall's direction: within this of a right
+ * angle, past this dead zone, this share per window (none when
+ * wall_align_gain is 0); the corridor heading then this share of the way to
+ * the wall's direction, if within this of it */
+#define SNAP_MAX_DEG 25.0f
+#define SNAP_DEAD_DEG 1.5f
+#define SNAP_GAIN 0.5f
+#define REF_MAX_DEG 15.0f
+#define REF_GAIN 0.5f
+
 void ffr_stop(ffr_state_t *st)
 {
     st->cmd_v_mm_s = 0.0f;
@@ -24,12 +34,41 @@ void ffr_drive_heading(ffr_state_t *st, float heading, float speed)
     st->cmd_w_rad_s = ffr_heading_hold_yaw(&st->cfg, st->odo.heading_rad, heading);
 }
 
+/*
+ * Odometry's heading and the corridor heading kept true by the walls beside
+ * (wall_direction.c): a wall's direction off a right angle, past a dead zone
+ * for the measurement's noise, is odometry's error; a share of it comes off
+ * odometry, and the corridor heading (in odometry's frame) moves with it and
+ * then toward the wall's direction.
+ */
+static void true_up_heading(ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    float dir, err, corr, diff;
+    if (!ffr_wall_dir_update(&st->wall_cal, cfg, &st->odo, st->ir_mm, &dir) || cfg->wall_align_gain <= 0.0f) {
+        return;
+    }
+    err = ffr_off_square(dir);
+    corr = 0.0f;
+    if (ffr_absf(err) < SNAP_MAX_DEG * FFR_DEG) {
+        float dead = SNAP_DEAD_DEG * FFR_DEG;
+        corr = SNAP_GAIN * (err > dead ? err - dead : (err < -dead ? err + dead : 0.0f));
+    }
+    st->odo.heading_rad -= corr;
+    st->route.heading_ref_rad -= corr;
+    diff = ffr_wrap_pi(dir - corr - st->route.heading_ref_rad);
+    if (ffr_absf(diff) < REF_MAX_DEG * FFR_DEG) {
+        st->route.heading_ref_rad += REF_GAIN * diff;
+    }
+}
+
 void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
 {
     const ffr_config_t *cfg = &st->cfg;
     ffr_wall_t w;
     int use = -1;
     float v = ffr_proximity_speed(cfg, st->ir_mm, speed);
+    true_up_heading(st);
     if (side == FFR_SIDE_LEFT || side == FFR_SIDE_RIGHT) {
         w = ffr_wall_estimate(cfg, st->ir_mm, side);
         if (w.valid && w.dist_mm < cfg->open_mm) {
@@ -42,10 +81,9 @@ void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
         }
     }
     if (use >= 0) {
-        /* what this tick teaches about odometry's heading and the pair's tilt,
-         * from the angle as measured; then the tilt taken off it */
-        st->odo.heading_rad -= ffr_wall_cal_update(&st->wall_cal, cfg, &w, use, st->odo.heading_rad,
-                                                   st->odo.dist_mm);
+        /* what this tick teaches about the pair's tilt, from the angle as
+         * measured; then the tilt taken off it */
+        ffr_wall_cal_update(&st->wall_cal, &w, use, st->odo.heading_rad, st->odo.dist_mm);
         ffr_wall_cal_correct(&st->wall_cal, &w, use);
         if (!w.angle_valid) {
             /* one ranger gives the distance but not the wall's direction: take the

@@ -49,13 +49,20 @@ float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side
 /* Yaw rate (rad/s) that holds heading_ref. */
 float ffr_heading_hold_yaw(const ffr_config_t *cfg, float heading, float heading_ref);
 
-/* wall_calibration.c: the followed wall's direction from travel. */
-void ffr_wall_cal_reset(ffr_wall_cal_t *c);   /* everything, the learned tilts too */
+/* wall_direction.c: the walls' direction in odometry's frame from each side
+ * ranger's hits. Returns how many windows closed this tick (their mean
+ * direction in *wall_dir, within 90 degrees of the heading), 0 on most ticks. */
+void ffr_wall_dir_reset(ffr_wall_cal_t *c);
+int ffr_wall_dir_update(ffr_wall_cal_t *c, const ffr_config_t *cfg, const ffr_odometry_t *o,
+                        const float ir_mm[FFR_IR_COUNT], float *wall_dir);
+/* What a direction (rad) is off the nearest multiple of 90 degrees. */
+float ffr_off_square(float dir);
+
+/* wall_calibration.c: each side's two-ranger wall angle, calibrated from travel. */
+void ffr_wall_cal_reset(ffr_wall_cal_t *c);   /* everything, the learned tilts and hit windows too */
 void ffr_wall_cal_restart(ffr_wall_cal_t *c); /* a new window; the tilts stay      */
-/* One tick beside the wall on `side` (w as measured, uncorrected). Returns a
- * heading correction (rad) to take off odometry, 0 on most ticks. */
-float ffr_wall_cal_update(ffr_wall_cal_t *c, const ffr_config_t *cfg, const ffr_wall_t *w, int side,
-                          float heading_rad, float dist_mm);
+/* One tick beside the wall on `side` (w as measured, uncorrected). */
+void ffr_wall_cal_update(ffr_wall_cal_t *c, const ffr_wall_t *w, int side, float heading_rad, float dist_mm);
 /* Take the side's learned tilt off a two-ranger wall angle. */
 void ffr_wall_cal_correct(const ffr_wall_cal_t *c, ffr_wall_t *w, int side);
 

@@ -23,6 +23,7 @@ static void begin_current(ffr_state_t *st)
     st->route.phase = PH_DRIVE;
     st->route.start_mm = st->odo.dist_mm;
     ffr_wall_cal_restart(&st->wall_cal);
+    ffr_wall_dir_reset(&st->wall_cal);
     if (s->op == FFR_OP_TURN && s->param == 0) {
         /* decided by the wall case, from what the last leg saw: before the reset */
         st->route.case_turn_deg = ffr_wall_case_turn(ffr_wall_case_sensed(cfg, st->ir_mm, &st->open), s->side);

@@ -1,39 +1,29 @@
 /*
- * The followed wall's direction measured from travel, and what it corrects.
+ * Each side's two-ranger wall angle, calibrated from travel.
  *
  * The wall line through a side's two rangers' hits (wall_follow.c) gives the
  * wall's angle at once, but each GP2D12 reads long or short by its own
  * calibration: two parts at opposite ends of the datasheet's spread tilt that
- * line by up to ~6 degrees, and a heading held along it carries the tilt into
- * every turn that follows. How the wall's distance changes over a stretch of
- * travel does not depend on the parts' offsets (they cancel in the
- * difference; a gain error only scales a small angle), so over each window of
- * travel beside one straight wall:
+ * line by up to ~6 degrees, and a robot steering and holding its corridor
+ * heading by it carries the tilt into every turn that follows. How the wall's
+ * distance changes over a stretch of travel does not depend on the parts'
+ * offsets (they cancel in the difference; a gain error only scales a small
+ * angle), so over each window of travel beside one straight wall the wall's
+ * direction is the mean heading plus the slope of distance against travel
+ * (least squares over every tick), and the mean of (heading + two-ranger
+ * angle) minus that direction is the tilt of this side's pair. It is learned
+ * per side (a running mean over the first windows, then a slow average) and
+ * taken off the two-ranger angle from then on (ffr_wall_cal_correct).
  *
- *   - the wall's direction in odometry's frame is the mean heading plus the
- *     slope of distance against travel (least squares over every tick);
- *   - contest walls meet at right angles and the robot starts square to its
- *     hallway, so what that direction is off a multiple of 90 degrees, past a
- *     dead zone, is odometry's heading error (track slip in turns adds up):
- *     a share of it is returned to be taken off odometry;
- *   - the mean of (heading + two-ranger angle) minus that direction is the
- *     tilt of this side's pair of parts: learned per side (running mean over
- *     the first windows, then a slow average) and taken off the two-ranger
- *     angle from then on (ffr_wall_cal_correct).
- *
- * A window needs both rangers on one straight wall every tick; a gap, a side
- * change or a new route step starts a new one.
+ * A window needs both rangers on one straight wall every tick, the distance
+ * close to a straight line and the pair's line steady; a gap, a side change,
+ * a turn or a new route step starts a new one.
  */
 #include "ffr_internal.h"
 
 /* the window: this much travel, turning less than this on the way */
 #define WINDOW_MM 100.0f
 #define WINDOW_TURN_DEG 8.0f
-/* odometry heading correction: past a dead zone, within this of a right
- * angle, this share of the error per window (0 when wall_align_gain is 0) */
-#define SNAP_DEAD_DEG 3.0f
-#define SNAP_MAX_DEG 25.0f
-#define SNAP_GAIN 0.3f
 /* the pair's tilt: a running mean over this many windows, then an average
  * with that weight; samples beyond the limit are another wall, not a tilt */
 #define BIAS_WINDOWS 8u
@@ -61,6 +51,7 @@ void ffr_wall_cal_restart(ffr_wall_cal_t *c)
 void ffr_wall_cal_reset(ffr_wall_cal_t *c)
 {
     ffr_wall_cal_restart(c);
+    ffr_wall_dir_reset(c);
     c->bias_rad[0] = c->bias_rad[1] = 0.0f;
     c->bias_n[0] = c->bias_n[1] = 0u;
     c->reserved2[0] = c->reserved2[1] = 0u;
@@ -73,8 +64,7 @@ void ffr_wall_cal_correct(const ffr_wall_cal_t *c, ffr_wall_t *w, int side)
     }
 }
 
-/* What a direction (rad) is off the nearest multiple of 90 degrees. */
-static float off_square(float dir)
+float ffr_off_square(float dir)
 {
     float q = 0.5f * FFR_PI;
     float k = (float)(int32_t)(dir / q + (dir >= 0.0f ? 0.5f : -0.5f));
@@ -90,14 +80,13 @@ static void start(ffr_wall_cal_t *c, int side, float heading_rad, float dist_mm)
 }
 
 /* The window is complete: what it says, then a new one from here. */
-static float close_window(ffr_wall_cal_t *c, const ffr_config_t *cfg, int side, float heading_rad, float dist_mm)
+static void close_window(ffr_wall_cal_t *c, int side, float heading_rad, float dist_mm)
 {
     float n = (float)c->n;
     float sxx = c->sum_ss - c->sum_s * c->sum_s / n;
     float sxy = c->sum_sd - c->sum_s * c->sum_d / n;
     float syy = c->sum_dd - c->sum_d * c->sum_d / n;
     float saa = c->sum_aa - c->sum_a * c->sum_a / n;
-    float corr = 0.0f;
     /* how far the distance strays from a straight line, and the wall line's
      * direction from constant (mm, rad rms): a hit on another wall shows in both */
     float resid = sxx > 0.0f ? (syy - sxy * sxy / sxx) / n : 0.0f;
@@ -108,42 +97,23 @@ static float close_window(ffr_wall_cal_t *c, const ffr_config_t *cfg, int side, 
         float slope = ffr_clampf(sxy / sxx, -0.4f, 0.4f);
         float rel = (side == FFR_SIDE_LEFT ? 1.0f : -1.0f) * slope; /* asin(x) ~ x here */
         float wall_rel = c->sum_h / n + rel; /* from the window's first heading */
-        float wall_dir = c->h0_rad + wall_rel;
         float tilt = c->sum_a / n - wall_rel;
-        float err = off_square(wall_dir);
-        float dead = SNAP_DEAD_DEG * FFR_DEG;
-#ifdef FFR_DEBUG_CAL
-        {
-            extern int printf(const char *, ...);
-            printf("CAL resid %.2f spread %.2f ", (double)ffr_sqrtf(resid > 0.0f ? resid : 0.0f), (double)(ffr_sqrtf(spread > 0.0f ? spread : 0.0f) / FFR_DEG));
-            printf("CAL side %d n %u h0 %.1f meanh %.1f rel %.2f wall %.2f err %.2f tilt %.2f bias %.2f\n", side, c->n,
-                   (double)(c->h0_rad / FFR_DEG), (double)((c->h0_rad + c->sum_h / n) / FFR_DEG), (double)(rel / FFR_DEG),
-                   (double)(wall_dir / FFR_DEG), (double)(err / FFR_DEG), (double)(tilt / FFR_DEG),
-                   (double)(c->bias_rad[side] / FFR_DEG));
-        }
-#endif
         if (ffr_absf(tilt) < BIAS_MAX_DEG * FFR_DEG) {
             if (c->bias_n[side] < BIAS_WINDOWS) {
                 c->bias_n[side] = (uint8_t)(c->bias_n[side] + 1u);
             }
             c->bias_rad[side] += (tilt - c->bias_rad[side]) / (float)c->bias_n[side];
         }
-        if (cfg->wall_align_gain > 0.0f && ffr_absf(err) < SNAP_MAX_DEG * FFR_DEG) {
-            float e2 = err > dead ? err - dead : (err < -dead ? err + dead : 0.0f);
-            corr = SNAP_GAIN * e2;
-        }
     }
-    start(c, side, heading_rad - corr, dist_mm);
-    return corr;
+    start(c, side, heading_rad, dist_mm);
 }
 
-float ffr_wall_cal_update(ffr_wall_cal_t *c, const ffr_config_t *cfg, const ffr_wall_t *w, int side,
-                          float heading_rad, float dist_mm)
+void ffr_wall_cal_update(ffr_wall_cal_t *c, const ffr_wall_t *w, int side, float heading_rad, float dist_mm)
 {
     float s, d, h;
     if (!w->angle_valid || (side != FFR_SIDE_LEFT && side != FFR_SIDE_RIGHT)) {
         ffr_wall_cal_restart(c);
-        return 0.0f;
+        return;
     }
     if (c->side != side) {
         start(c, side, heading_rad, dist_mm);
@@ -169,7 +139,6 @@ float ffr_wall_cal_update(ffr_wall_cal_t *c, const ffr_config_t *cfg, const ffr_
     c->sum_aa += (h + w->angle_rad) * (h + w->angle_rad);
     c->n = (uint16_t)(c->n + 1u);
     if (s >= WINDOW_MM && c->n >= 4u) {
-        return close_window(c, cfg, side, heading_rad, dist_mm);
+        close_window(c, side, heading_rad, dist_mm);
     }
-    return 0.0f;
 }
