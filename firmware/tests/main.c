@@ -11,6 +11,7 @@ int main(void)
     suite_wall_follow();
     suite_wall_cases();
     suite_wall_calibration();
+    suite_wall_direction();
     suite_line_counter();
     suite_openings();
     suite_mission();

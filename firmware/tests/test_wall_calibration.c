@@ -1,94 +1,50 @@
 /*
- * wall_calibration.c: the wall's direction from travel corrects odometry's
- * heading and learns each side's two-ranger tilt. First the behaviour alone
- * with synthetic wall estimates, then closed loop: the whole firmware beside
- * one straight wall, its rangers' readings computed from the true pose, with
- * a pair of parts at opposite ends of the datasheet's offset spread.
+ * wall_calibration.c (each side's two-ranger tilt learned from travel) and
+ * wall_direction.c (the walls' direction from each ranger's hits). First the
+ * tilt alone with synthetic wall estimates, then closed loop: the whole
+ * firmware beside one straight wall, its rangers' readings computed from the
+ * true pose, with a pair of parts at opposite ends of the datasheet's offset
+ * spread, and odometry off by what a room's scan leaves.
  */
 #include "ffr_internal.h"
 #include "rig.h"
 #include "unit.h"
 
-/* Feed `ticks` ticks of travel, `step` mm each, beside a straight wall that
- * runs along a right angle of the world. The robot's true heading is `rel`
- * to the right of the wall (the wall runs `rel` to the left of the heading);
- * odometry's heading is off the truth by `*err`, and what the update returns
- * is taken off it, as ffr_drive_corridor does. The two rangers' angle reads
- * the wall's true angle to the heading plus `tilt`. Returns the corrections'
- * sum. */
-static float feed(ffr_wall_cal_t *c, const ffr_config_t *cfg, int side, float *err, float *s, float rel,
-                  float tilt, int ticks, float step)
+/* Feed `ticks` ticks of travel, `step` mm each, beside a straight wall. The
+ * robot's heading is `rel` to the right of the wall (the wall runs `rel` to
+ * the left of the heading); odometry's heading is off the truth by `err`
+ * (which the tilt must not depend on). The two rangers' angle reads the
+ * wall's true angle to the heading plus `tilt`. */
+static void feed(ffr_wall_cal_t *c, int side, float err, float *s, float rel, float tilt, int ticks, float step)
 {
-    float total = 0.0f;
     int i;
     for (i = 0; i < ticks; ++i, *s += step) {
         ffr_wall_t w;
-        float corr;
         w.valid = 1;
         w.angle_valid = 1;
         /* away from a left wall that runs to the left of the path, toward a right one */
         w.dist_mm = 230.0f + (side == FFR_SIDE_LEFT ? 1.0f : -1.0f) * rel * (*s - 1000.0f);
         w.angle_rad = rel + tilt;
-        corr = ffr_wall_cal_update(c, cfg, &w, side, -rel + *err, *s);
-        *err -= corr;
-        total += corr;
+        ffr_wall_cal_update(c, &w, side, -rel + err, *s);
     }
-    return total;
-}
-
-static void odometry_heading_error_is_taken_off(void)
-{
-    ffr_config_t cfg;
-    ffr_wall_cal_t c;
-    float err = -10.0f * FFR_DEG, s = 0.0f, corr;
-    ffr_config_default(&cfg);
-    ffr_wall_cal_reset(&c);
-    /* parallel to a wall that odometry puts 10 degrees off a right angle */
-    corr = feed(&c, &cfg, FFR_SIDE_RIGHT, &err, &s, 0.0f, 0.0f, 20, 3.0f);
-    CHECK(corr == 0.0f); /* 60 mm: no window completed yet */
-    corr = feed(&c, &cfg, FFR_SIDE_RIGHT, &err, &s, 0.0f, 0.0f, 700, 3.0f);
-    /* after 2.1 m, brought to the dead zone's edge (3 degrees), not past it */
-    CHECK(corr < -6.8f * FFR_DEG);
-    CHECK_NEAR(err / FFR_DEG, -3.0, 0.1);
-    /* the pair measured the wall truly: no tilt learned */
-    CHECK_NEAR(c.bias_rad[FFR_SIDE_RIGHT] / FFR_DEG, 0.0, 0.05);
-    CHECK(c.bias_n[FFR_SIDE_RIGHT] > 0 && c.bias_n[FFR_SIDE_LEFT] == 0);
-    /* driving 5 degrees toward the wall makes no difference to either */
-    ffr_wall_cal_reset(&c);
-    err = 10.0f * FFR_DEG;
-    feed(&c, &cfg, FFR_SIDE_RIGHT, &err, &s, 5.0f * FFR_DEG, 0.0f, 700, 3.0f);
-    CHECK_NEAR(err / FFR_DEG, 3.0, 0.1);
-    CHECK_NEAR(c.bias_rad[FFR_SIDE_RIGHT] / FFR_DEG, 0.0, 0.05);
-}
-
-static void the_heading_error_is_left_alone_when_alignment_is_off(void)
-{
-    ffr_config_t cfg;
-    ffr_wall_cal_t c;
-    float err = 10.0f * FFR_DEG, s = 0.0f;
-    ffr_config_default(&cfg);
-    cfg.wall_align_gain = 0.0f;
-    ffr_wall_cal_reset(&c);
-    CHECK(feed(&c, &cfg, FFR_SIDE_LEFT, &err, &s, 0.0f, 3.0f * FFR_DEG, 300, 3.0f) == 0.0f);
-    /* the tilt is still learned: it is about the parts, not odometry */
-    CHECK_NEAR(c.bias_rad[FFR_SIDE_LEFT] / FFR_DEG, 3.0, 0.05);
 }
 
 static void a_pairs_tilt_is_learned_per_side(void)
 {
-    ffr_config_t cfg;
     ffr_wall_cal_t c;
     ffr_wall_t w;
-    float err = 0.0f, s = 0.0f;
-    ffr_config_default(&cfg);
+    float s = 0.0f;
     ffr_wall_cal_reset(&c);
+    /* 60 mm: no window completed yet */
+    feed(&c, FFR_SIDE_LEFT, 0.0f, &s, 4.0f * FFR_DEG, 5.0f * FFR_DEG, 20, 3.0f);
+    CHECK(c.bias_n[FFR_SIDE_LEFT] == 0 && c.bias_rad[FFR_SIDE_LEFT] == 0.0f);
     /* the robot drives 4 degrees off a left wall, the left pair reads 5 degrees more */
-    feed(&c, &cfg, FFR_SIDE_LEFT, &err, &s, 4.0f * FFR_DEG, 5.0f * FFR_DEG, 400, 3.0f);
+    feed(&c, FFR_SIDE_LEFT, 0.0f, &s, 4.0f * FFR_DEG, 5.0f * FFR_DEG, 400, 3.0f);
     CHECK_NEAR(c.bias_rad[FFR_SIDE_LEFT] / FFR_DEG, 5.0, 0.1);
-    CHECK(err == 0.0f); /* odometry was right: left alone */
-    /* the right pair is unaffected, then learns its own */
+    CHECK(c.bias_n[FFR_SIDE_LEFT] > 0 && c.bias_n[FFR_SIDE_RIGHT] == 0);
+    /* the right pair is unaffected, then learns its own, whatever odometry's error */
     CHECK(c.bias_rad[FFR_SIDE_RIGHT] == 0.0f);
-    feed(&c, &cfg, FFR_SIDE_RIGHT, &err, &s, 0.0f, -3.0f * FFR_DEG, 400, 3.0f);
+    feed(&c, FFR_SIDE_RIGHT, 10.0f * FFR_DEG, &s, -2.0f * FFR_DEG, -3.0f * FFR_DEG, 400, 3.0f);
     CHECK_NEAR(c.bias_rad[FFR_SIDE_RIGHT] / FFR_DEG, -3.0, 0.1);
     CHECK_NEAR(c.bias_rad[FFR_SIDE_LEFT] / FFR_DEG, 5.0, 0.1);
     /* and comes off that side's angle only, when both rangers measured it */
@@ -114,43 +70,53 @@ static void a_pairs_tilt_is_learned_per_side(void)
 
 static void gaps_turns_and_other_walls_teach_nothing(void)
 {
-    ffr_config_t cfg;
     ffr_wall_cal_t c;
     ffr_wall_t w;
-    float h = 12.0f * FFR_DEG, s = 0.0f, err;
+    float h = 12.0f * FFR_DEG, s = 0.0f;
     int i;
-    ffr_config_default(&cfg);
     ffr_wall_cal_reset(&c);
     /* one ranger every third tick: never a whole window */
     w.valid = 1;
     w.dist_mm = 230.0f;
-    w.angle_rad = 0.0f;
+    w.angle_rad = 3.0f * FFR_DEG;
     for (i = 0; i < 600; ++i, s += 3.0f) {
         w.angle_valid = (uint8_t)(i % 3 != 0);
-        CHECK(ffr_wall_cal_update(&c, &cfg, &w, FFR_SIDE_LEFT, h, s) == 0.0f);
+        ffr_wall_cal_update(&c, &w, FFR_SIDE_LEFT, h, s);
     }
     CHECK(c.bias_n[FFR_SIDE_LEFT] == 0);
     /* turning 1 degree every 10 mm: never 100 mm within 8 degrees */
     w.angle_valid = 1;
     for (i = 0; i < 600; ++i, s += 3.0f) {
         h += 0.3f * FFR_DEG;
-        CHECK(ffr_wall_cal_update(&c, &cfg, &w, FFR_SIDE_LEFT, h, s) == 0.0f);
+        ffr_wall_cal_update(&c, &w, FFR_SIDE_LEFT, h, s);
     }
     CHECK(c.bias_n[FFR_SIDE_LEFT] == 0);
     /* standing still (a turn in place) completes no window */
     ffr_wall_cal_restart(&c);
     for (i = 0; i < 600; ++i) {
-        CHECK(ffr_wall_cal_update(&c, &cfg, &w, FFR_SIDE_LEFT, 10.0f * FFR_DEG, s) == 0.0f);
+        ffr_wall_cal_update(&c, &w, FFR_SIDE_LEFT, 10.0f * FFR_DEG, s);
     }
-    /* no side (heading hold) is no window */
-    CHECK(ffr_wall_cal_update(&c, &cfg, &w, FFR_SIDE_NONE, 0.0f, s) == 0.0f && c.side == -1);
-    /* the pair's line 20 degrees off the travel: two walls, not a tilt */
-    err = 0.0f;
-    feed(&c, &cfg, FFR_SIDE_LEFT, &err, &s, 0.0f, 20.0f * FFR_DEG, 300, 3.0f);
     CHECK(c.bias_n[FFR_SIDE_LEFT] == 0);
-    /* 40 degrees off a right angle is not odometry's error */
-    err = 40.0f * FFR_DEG;
-    CHECK(feed(&c, &cfg, FFR_SIDE_LEFT, &err, &s, 0.0f, 0.0f, 300, 3.0f) == 0.0f);
+    /* no side (heading hold) is no window */
+    ffr_wall_cal_update(&c, &w, FFR_SIDE_NONE, 0.0f, s);
+    CHECK(c.side == -1);
+    /* the pair's line 20 degrees off the travel: two walls, not a tilt */
+    feed(&c, FFR_SIDE_LEFT, 0.0f, &s, 0.0f, 20.0f * FFR_DEG, 300, 3.0f);
+    CHECK(c.bias_n[FFR_SIDE_LEFT] == 0);
+    /* the pair's line jumping by 4 degrees every other tick (one ranger
+     * between two walls): not steady, not learned */
+    for (i = 0; i < 300; ++i, s += 3.0f) {
+        w.angle_rad = (i & 1) ? 4.0f * FFR_DEG : 0.0f;
+        ffr_wall_cal_update(&c, &w, FFR_SIDE_LEFT, 0.0f, s);
+    }
+    CHECK(c.bias_n[FFR_SIDE_LEFT] == 0);
+    /* nor the distance jumping by 10 mm */
+    w.angle_rad = 0.0f;
+    for (i = 0; i < 300; ++i, s += 3.0f) {
+        w.dist_mm = (i & 1) ? 240.0f : 230.0f;
+        ffr_wall_cal_update(&c, &w, FFR_SIDE_LEFT, 0.0f, s);
+    }
+    CHECK(c.bias_n[FFR_SIDE_LEFT] == 0);
 }
 
 /* ---- closed loop: the firmware beside a straight wall ------------------ */
@@ -266,20 +232,20 @@ static void odometry_off_by_a_turn_is_brought_back_by_the_wall(void)
     /* odometry 9 degrees off (a scan's track slip), matched parts */
     follow_wall(&wd, 0.0f, 0.0f, 9.0f, 1000);
     err_deg = (wd.r.st.odo.heading_rad - wd.th) / FFR_DEG;
-    /* brought within the dead zone of 3 degrees (from 9) */
-    CHECK(err_deg > -3.3f && err_deg < 3.3f);
+    /* brought within the dead zone of 1.5 degrees (from 9) */
+    CHECK(err_deg > -2.0f && err_deg < 2.0f);
     CHECK(wd.x > 2500.0f);
     /* and with opposite parts as well */
     follow_wall(&wd, -120.0f, 120.0f, -9.0f, 1000);
     err_deg = (wd.r.st.odo.heading_rad - wd.th) / FFR_DEG;
-    CHECK(err_deg > -3.3f && err_deg < 3.3f);
+    CHECK(err_deg > -2.0f && err_deg < 2.0f);
+    /* the corridor heading was set by the 9-degree-off odometry: it runs along the wall now */
+    CHECK_NEAR((wd.r.st.route.heading_ref_rad - wd.r.st.odo.heading_rad + wd.th) / FFR_DEG, 0.0, 1.5);
     CHECK(wd.r.st.wall_cal.bias_rad[FFR_SIDE_RIGHT] / FFR_DEG < -3.0f);
 }
 
 void suite_wall_calibration(void)
 {
-    odometry_heading_error_is_taken_off();
-    the_heading_error_is_left_alone_when_alignment_is_off();
     a_pairs_tilt_is_learned_per_side();
     gaps_turns_and_other_walls_teach_nothing();
     opposite_parts_no_longer_tilt_the_corridor_heading();

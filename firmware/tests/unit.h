@@ -39,6 +39,7 @@ void suite_speed_control(void);
 void suite_wall_follow(void);
 void suite_wall_cases(void);
 void suite_wall_calibration(void);
+void suite_wall_direction(void);
 void suite_line_counter(void);
 void suite_openings(void);
 void suite_mission(void);

@@ -1,0 +1,165 @@
+/*
+ * wall_direction.c: each side ranger's hits, placed in odometry's frame,
+ * give the wall's direction there, whatever the part's calibration. The
+ * rangers' readings are computed from a true pose beside straight walls;
+ * odometry's frame is the world turned by its heading error.
+ */
+#include "ffr_internal.h"
+#include "unit.h"
+
+typedef struct {
+    float left_y, right_y;   /* hallway walls along x: y = left_y (> 0), y = right_y (< 0) */
+    float ahead_x;           /* a wall across at x = ahead_x (0: none)                     */
+    float jog_x, jog_dy;     /* the right wall steps out by jog_dy beyond x = jog_x (0: none) */
+    float part_mm[FFR_IR_COUNT]; /* each part reads this much long (mm along its beam)      */
+} walls_t;
+
+/* Distance along ranger i's beam to the nearest wall, from the true pose. */
+static float beam(const ffr_config_t *cfg, const walls_t *w, int i, float x, float y, float th)
+{
+    float c = ffr_cosf(th), s = ffr_sinf(th);
+    float mx = x + c * cfg->ir_x_mm[i] - s * cfg->ir_y_mm[i];
+    float my = y + s * cfg->ir_x_mm[i] + c * cfg->ir_y_mm[i];
+    float ux = ffr_cosf(th + cfg->ir_angle_deg[i] * FFR_DEG);
+    float uy = ffr_sinf(th + cfg->ir_angle_deg[i] * FFR_DEG);
+    float best = FFR_IR_NONE(cfg);
+    float d;
+    if (uy > 1e-3f) {
+        d = (w->left_y - my) / uy;
+        best = d < best ? d : best;
+    }
+    if (uy < -1e-3f) {
+        d = (w->right_y - my) / uy;
+        if (w->jog_x != 0.0f && mx + d * ux > w->jog_x) {
+            d = (w->right_y + w->jog_dy - my) / uy;
+        }
+        best = d < best ? d : best;
+    }
+    if (w->ahead_x != 0.0f && ux > 1e-3f) {
+        d = (w->ahead_x - mx) / ux;
+        best = d < best ? d : best;
+    }
+    if (best > cfg->ir_max_mm) {
+        return FFR_IR_NONE(cfg);
+    }
+    return best + w->part_mm[i];
+}
+
+static int drive_worst(ffr_wall_cal_t *c, const ffr_config_t *cfg, const walls_t *w, float *x, float th, float err,
+                       float turn_per_mm, float mm, float *dir_out, float *worst)
+{
+    ffr_odometry_t o;
+    float ir[FFR_IR_COUNT];
+    float y = 0.0f, s = 0.0f, dir;
+    int i, found = 0;
+    ffr_odometry_reset(&o);
+    while (s < mm) {
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            ir[i] = beam(cfg, w, i, *x, y, th);
+        }
+        /* odometry's frame: the world turned by err */
+        o.x_mm = ffr_cosf(err) * *x - ffr_sinf(err) * y;
+        o.y_mm = ffr_sinf(err) * *x + ffr_cosf(err) * y;
+        o.heading_rad = th + err;
+        o.dist_mm = s;
+        if (ffr_wall_dir_update(c, cfg, &o, ir, &dir)) {
+            *dir_out = dir;
+            if (ffr_absf(dir - err) > *worst) {
+                *worst = ffr_absf(dir - err);
+            }
+            ++found;
+        }
+        *x += 3.0f * ffr_cosf(th);
+        y += 3.0f * ffr_sinf(th);
+        th += turn_per_mm * 3.0f;
+        s += 3.0f;
+    }
+    return found;
+}
+
+/* Drive `mm` from (x, 0) at true heading `th` (turning turn_per_mm), with
+ * odometry's heading `err` off; returns how many windows closed, the last
+ * direction seen and how far the worst was from the walls' (err). */
+static int drive(ffr_wall_cal_t *c, const ffr_config_t *cfg, const walls_t *w, float *x, float th, float err,
+                 float turn_per_mm, float mm, float *dir_out)
+{
+    float worst = 0.0f;
+    return drive_worst(c, cfg, w, x, th, err, turn_per_mm, mm, dir_out, &worst);
+}
+
+static void the_walls_direction_in_odometrys_frame(void)
+{
+    ffr_config_t cfg;
+    ffr_wall_cal_t c;
+    walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, -30.0f, 30.0f, 30.0f, -30.0f}};
+    float x = 0.0f, dir = 99.0f;
+    ffr_config_default(&cfg);
+    ffr_wall_cal_reset(&c);
+    /* parts 30 mm long and short, in opposite pairs (their two-ranger lines
+     * tilt by degrees); odometry 7 degrees off: the walls read at 7 degrees */
+    CHECK(drive(&c, &cfg, &w, &x, 0.0f, 7.0f * FFR_DEG, 0.0f, 1000.0f, &dir) >= 7);
+    CHECK_NEAR(dir / FFR_DEG, 7.0, 0.2);
+    /* driving 5 degrees toward the right wall changes nothing */
+    ffr_wall_dir_reset(&c);
+    w.left_y = 300.0f;
+    CHECK(drive(&c, &cfg, &w, &x, -5.0f * FFR_DEG, -4.0f * FFR_DEG, 0.0f, 500.0f, &dir) >= 3);
+    CHECK_NEAR(dir / FFR_DEG, -4.0, 0.3);
+    /* one wall, one ranger (the other looks into an opening): enough */
+    {
+        walls_t one = {2000.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 25.0f, 0.0f, 0.0f}};
+        ffr_wall_dir_reset(&c);
+        x = 0.0f;
+        cfg.ir_angle_deg[FFR_IR_RR] = 180.0f; /* blind the rear right ranger */
+        CHECK(drive(&c, &cfg, &one, &x, 0.0f, 3.0f * FFR_DEG, 0.0f, 600.0f, &dir) >= 4);
+        CHECK_NEAR(dir / FFR_DEG, 3.0, 0.2);
+        ffr_config_default(&cfg);
+    }
+}
+
+static void not_a_straight_wall_along_the_travel(void)
+{
+    ffr_config_t cfg;
+    ffr_wall_cal_t c;
+    walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0}};
+    float x = 0.0f, dir = 0.0f;
+    ffr_config_default(&cfg);
+    ffr_wall_cal_reset(&c);
+    /* too little travel */
+    CHECK(drive(&c, &cfg, &w, &x, 0.0f, 0.0f, 0.0f, 110.0f, &dir) == 0);
+    /* turning 12 degrees per 100 mm */
+    ffr_wall_dir_reset(&c);
+    CHECK(drive(&c, &cfg, &w, &x, 0.0f, 0.0f, 0.12f * FFR_DEG, 600.0f, &dir) == 0);
+    /* a wall across ahead: the front rangers' hits bend onto it (the rear
+     * ones still see the hallway's walls, whose direction is right) */
+    ffr_wall_dir_reset(&c);
+    x = 0.0f;
+    w.ahead_x = 450.0f;
+    dir = 99.0f;
+    drive(&c, &cfg, &w, &x, 0.0f, 0.0f, 0.0f, 150.0f, &dir);
+    CHECK(dir == 99.0f || ffr_absf(dir) < 0.5f * FFR_DEG);
+    /* the right wall steps out 30 mm (a door jamb, a wall's thickness): the
+     * windows across the step are not a line, the others are right */
+    {
+        walls_t jog = {5000.0f, -230.0f, 0.0f, 600.0f, -30.0f, {0}};
+        float worst = 0.0f;
+        ffr_wall_dir_reset(&c);
+        x = 0.0f;
+        CHECK(drive_worst(&c, &cfg, &jog, &x, 0.0f, 2.0f * FFR_DEG, 0.0f, 1200.0f, &dir, &worst) >= 6);
+        CHECK(worst < 0.3f * FFR_DEG);
+    }
+    /* hits that only move along the beam (driving straight at a wall seen by
+     * one ranger) are no line along the travel */
+    {
+        walls_t across = {5000.0f, -5000.0f, 900.0f, 0.0f, 0.0f, {0}};
+        ffr_wall_dir_reset(&c);
+        x = 0.0f;
+        dir = 99.0f;
+        CHECK(drive(&c, &cfg, &across, &x, 0.0f, 0.0f, 0.0f, 400.0f, &dir) == 0);
+    }
+}
+
+void suite_wall_direction(void)
+{
+    the_walls_direction_in_odometrys_frame();
+    not_a_straight_wall_along_the_travel();
+}
