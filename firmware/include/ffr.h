@@ -230,6 +230,7 @@ typedef struct {
     uint8_t front_saw[2];          /* the front corner ranger saw it this step */
     uint8_t rear_ok[2];            /* the rear ranger's wall stayed beside     */
     float rear_lat0_mm[2];         /* its distance to the side when first seen */
+    float front_lat_mm[2];         /* the front ranger's wall: its distance to the side (running), -1 none */
     float seen_mm[2];              /* travel with the wall seen               */
     float open_mm[2];              /* travel with the side open               */
     float rear_open_mm[2];         /* travel with the rear ranger open too    */

@@ -16,6 +16,11 @@
 
 /* a wall alongside keeps its distance to the side within this, mm */
 #define REAR_LAT_DRIFT_MM 60.0f
+/* the front ranger's hit jumping out this far to the side of the wall it was
+ * following is past that wall's end (through a door, across a junction), even
+ * when it still counts as beside; slow drift is followed at this share per tick */
+#define FRONT_JUMP_MM 70.0f
+#define FRONT_LAT_FOLLOW 0.2f
 
 void ffr_openings_reset(ffr_openings_t *op)
 {
@@ -26,6 +31,7 @@ void ffr_openings_reset(ffr_openings_t *op)
         op->front_saw[i] = 0;
         op->rear_ok[i] = 1;
         op->rear_lat0_mm[i] = -1.0f;
+        op->front_lat_mm[i] = -1.0f;
         op->seen_mm[i] = 0.0f;
         op->open_mm[i] = 0.0f;
         op->rear_open_mm[i] = 0.0f;
@@ -52,6 +58,16 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const floa
         /* a wall beside the robot, not one across an opening (wall_follow.c) */
         int front = ffr_hit_beside(cfg, f, d);
         int rear = ffr_hit_beside(cfg, r, dr);
+        if (front) {
+            float lat = ffr_absf(cfg->ir_y_mm[f] + d * ffr_sinf(cfg->ir_angle_deg[f] * FFR_DEG));
+            if (op->front_lat_mm[side] < 0.0f) {
+                op->front_lat_mm[side] = lat;
+            } else if (lat - op->front_lat_mm[side] > FRONT_JUMP_MM) {
+                front = 0; /* beyond the wall's end: keep its distance for a wall that resumes */
+            } else {
+                op->front_lat_mm[side] += FRONT_LAT_FOLLOW * (lat - op->front_lat_mm[side]);
+            }
+        }
         if (rear) {
             float lat = ffr_absf(cfg->ir_y_mm[r] + dr * ffr_sinf(cfg->ir_angle_deg[r] * FFR_DEG));
             if (op->rear_lat0_mm[side] < 0.0f) {

@@ -125,6 +125,14 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
                     /* go on until the origin is in the middle of the opening */
                     int side = s->event == FFR_EV_OPEN_L ? FFR_SIDE_LEFT : FFR_SIDE_RIGHT;
                     st->route.goal_mm = st->open.open_at_mm[side] + cfg->hallway_half_mm;
+#ifdef FFR_DEBUG_CAL
+                    {
+                        extern int printf(const char *, ...);
+                        printf("OPEN pc %u t %u dist %.0f open_at %.0f goal %.0f front_saw %d\n", st->route.pc, st->t_ms,
+                               (double)st->odo.dist_mm, (double)st->open.open_at_mm[side], (double)st->route.goal_mm,
+                               st->open.front_saw[side]);
+                    }
+#endif
                     st->route.phase = PH_WRAP;
                 } else {
                     ffr_stop(st);

@@ -14,6 +14,9 @@ static void hit_point(const ffr_config_t *cfg, int i, float d, float *px, float 
     *py = cfg->ir_y_mm[i] + d * ffr_sinf(a);
 }
 
+/* a front hit within this of the wall ahead (forward, mm) is on that wall */
+#define AHEAD_MARGIN_MM 70.0f
+
 /*
  * A hit farther to the side than open_mm is across an opening (a crossing
  * hallway's far wall, a room beyond its door), not the wall beside the
@@ -51,6 +54,15 @@ ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_C
     if (fv) {
         hit_point(cfg, f, ir_mm[f], &fx, &fy);
         fv = ffr_hit_beside(cfg, f, ir_mm[f]);
+        /* nearing a corner, the front ranger's beam reaches the wall ahead
+         * before the side wall ends: a hit about as far ahead as the centre
+         * ranger puts that wall is on it. Steering away from it turned the
+         * robot off its wall before the FRONT event could stop it (a centre
+         * part reading long lets the robot that close). */
+        if (fv && ffr_ir_valid(cfg, ir_mm[FFR_IR_CF])
+            && fx > ir_mm[FFR_IR_CF] + cfg->ir_x_mm[FFR_IR_CF] - AHEAD_MARGIN_MM) {
+            fv = 0;
+        }
     }
     if (rv) {
         hit_point(cfg, r, ir_mm[r], &rx, &ry);
