@@ -148,28 +148,39 @@ static int nose_in_doorway(const ffr_state_t *st)
  * knows where that wall runs (through the crossing, square to the entry
  * heading). A candle by that wall is approached along it, and the door's jamb
  * is a thin wall end the rangers may not see: stop before a front corner
- * reaches the wall's line, as if it were seen. Only a stop, no steering: the
- * approach stays aimed at the flame, so the fans reach it from there.
- * Odometry inside one room is short and reliable, hence half the rangers'
- * margin.
+ * reaches the wall's line, as if it were seen. Odometry inside one room is
+ * short and reliable, hence half the rangers' margin. A front corner nearing
+ * the line turns the robot toward running along the wall (a yaw returned, as
+ * the rangers' guard does): a candle hugging that wall is then approached
+ * beside it instead of nose first, which stopped the robot with the fans out
+ * of reach.
  */
-static void door_wall_guard(const ffr_state_t *st, int *stop)
+static float door_wall_guard(const ffr_state_t *st, int *stop)
 {
     const ffr_config_t *cfg = &st->cfg;
     /* only by the door: farther along, the wall is a wall the rangers see, and
      * the odometry heading's error (a few degrees after a scan) grows with the
      * distance from the crossing point */
     const float reach = cfg->hallway_half_mm + cfg->guard_side_mm;
+    float w = 0.0f;
     int k;
     for (k = 0; k < 2; ++k) {
         float lat;
         float d = depth_in(st, cfg->body_front_mm, k ? cfg->body_half_width_mm : -cfg->body_half_width_mm, &lat);
+        if (ffr_absf(lat) >= reach) {
+            continue;
+        }
         /* the doorway line lies on the wall's centre line and is first seen at
          * its near edge: the wall's room-side face is about a line width deeper */
-        if (ffr_absf(lat) < reach && d < DOOR_WALL_FACE_MM + 0.5f * cfg->guard_stop_mm) {
+        if (d < DOOR_WALL_FACE_MM + 0.5f * cfg->guard_stop_mm) {
             *stop = 1;
+        } else if (d < DOOR_WALL_FACE_MM + cfg->guard_side_mm) {
+            /* left corner (k = 1) near: turn right, and the other way round */
+            float push = (DOOR_WALL_FACE_MM + cfg->guard_side_mm - d) * 0.03f;
+            w += k ? -push : push;
         }
     }
+    return w;
 }
 
 /*
@@ -207,7 +218,7 @@ static float approach_guard(const ffr_state_t *st, int *stop)
             }
         }
     }
-    door_wall_guard(st, stop);
+    w += door_wall_guard(st, stop);
     return w;
 }
 
