@@ -34,6 +34,8 @@ enum {
 #define FLAME_FILTER 0.25f
 /* contest lines are 2.5 cm wide, walls about 2 cm thick */
 #define DOOR_WALL_FACE_MM 25.0f
+/* the flame's balance (left - right over both) about 20 degrees off the heading */
+#define FLAME_AIM_BAL 0.5f
 /* clearance kept beyond the body's corner radius for the scan's turn in place */
 #define SCAN_MARGIN_MM 35.0f
 
@@ -155,7 +157,7 @@ static int nose_in_doorway(const ffr_state_t *st)
  * beside it instead of nose first, which stopped the robot with the fans out
  * of reach.
  */
-static float door_wall_guard(const ffr_state_t *st, int *stop)
+static float door_wall_guard(const ffr_state_t *st, float bal, int *stop)
 {
     const ffr_config_t *cfg = &st->cfg;
     /* only by the door: farther along, the wall is a wall the rangers see, and
@@ -175,9 +177,12 @@ static float door_wall_guard(const ffr_state_t *st, int *stop)
         if (d < DOOR_WALL_FACE_MM + 0.5f * cfg->guard_stop_mm) {
             *stop = 1;
         } else if (d < DOOR_WALL_FACE_MM + cfg->guard_side_mm) {
-            /* left corner (k = 1) near: turn right, and the other way round */
+            /* left corner (k = 1) near: turn right, and the other way round;
+             * less as the turn takes the flame off toward that side, none
+             * with it FLAME_AIM_BAL off: the fans must still reach it */
             float push = (DOOR_WALL_FACE_MM + cfg->guard_side_mm - d) * 0.03f;
-            w += k ? -push : push;
+            float keep = ffr_clampf(1.0f + (k ? -bal : bal) / FLAME_AIM_BAL, 0.0f, 1.0f);
+            w += (k ? -push : push) * keep;
         }
     }
     return w;
@@ -189,7 +194,7 @@ static float door_wall_guard(const ffr_state_t *st, int *stop)
  * wall is about to touch a front corner. The GP2D12 folds back under 10 cm,
  * so this must act while the wall is still seen, not at contact.
  */
-static float approach_guard(const ffr_state_t *st, int *stop)
+static float approach_guard(const ffr_state_t *st, float bal, int *stop)
 {
     const ffr_config_t *cfg = &st->cfg;
     static const int rangers[3] = {FFR_IR_CF, FFR_IR_LF, FFR_IR_RF};
@@ -218,7 +223,7 @@ static float approach_guard(const ffr_state_t *st, int *stop)
             }
         }
     }
-    w += door_wall_guard(st, stop);
+    w += door_wall_guard(st, bal, stop);
     return w;
 }
 
@@ -322,10 +327,11 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         }
         return 0;
     case RP_APPROACH: {
-        float bal;
+        /* the flame's balance: + on the left */
+        float bal = ((float)in->flame[0] - (float)in->flame[1]) / (sig > 1.0f ? sig : 1.0f);
         float v;
         int guard_stop;
-        float guard_w = approach_guard(st, &guard_stop);
+        float guard_w = approach_guard(st, bal, &guard_stop);
         if (st->lines.edge || guard_stop || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
             ffr_stop(st);
             if (nose_in_doorway(st) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
@@ -344,7 +350,6 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
             begin_scan(st);
             return 0;
         }
-        bal = ((float)in->flame[0] - (float)in->flame[1]) / (sig > 1.0f ? sig : 1.0f);
         v = ffr_proximity_speed(cfg, st->ir_mm, cfg->approach_speed_mm_s);
         st->cmd_v_mm_s = v;
         st->cmd_w_rad_s = ffr_clampf(cfg->heading_kp * bal * cfg->flame_steer_deg * FFR_DEG + guard_w,

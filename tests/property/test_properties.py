@@ -62,10 +62,10 @@ def test_within_the_envelope_every_mission_succeeds(ffr_mission, pytestconfig, s
 @pytest.mark.property
 def test_the_real_parts_success_rate(pytestconfig) -> None:
     """The bundled `datasheet` profile: every GP2D12 and flame sensor with its own calibration drawn
-    uniformly within the datasheet's limits, plus typical noise. Not every such robot succeeds
-    everywhere (docs/robustness.md: about 2 in 50 draws of five rangers fail often); measured over
-    50 robots x 20 random candles: 96.9 %. Asserted: at least 95 % of the missions, and every failure
-    replayable."""
+    uniformly within the datasheet's limits, plus typical noise: the real parts. docs/robustness.md
+    has the measurements (99.9 % of 2,000 missions over 50 robots and more). Asserted: at least 99 %
+    of 1,000 missions over 50 robots (thorough), at most one failure in 80 over 4 robots (quick),
+    and every failure replayable."""
     from harness import sweep as sw
 
     thorough = pytest_plugin.active_profile == "thorough"
@@ -75,7 +75,10 @@ def test_the_real_parts_success_rate(pytestconfig) -> None:
     rows = sw.execute(jobs) if thorough else sw.run_local_serial(jobs)
     ok = sum(1 for r in rows if r["success"])
     failures = [r["replay"] for r in rows if not r["success"]]
-    assert 100.0 * ok / len(rows) >= 95.0, f"{ok}/{len(rows)} succeeded; first failure: {failures[:1]}"
+    if thorough:
+        assert 100.0 * ok / len(rows) >= 99.0, f"{ok}/{len(rows)} succeeded; first failure: {failures[:1]}"
+    else:
+        assert len(rows) - ok <= 1, f"{ok}/{len(rows)} succeeded; failures: {failures}"
     assert all(f.startswith("ffr run --candle ") and "--noise datasheet" in f for f in failures)
 
 
