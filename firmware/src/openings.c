@@ -98,7 +98,10 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const floa
                 op->open_at_mm[side] = dist_mm + hit_ahead(cfg, f, d);
             }
         } else {
-            op->open_mm[side] += step_mm;
+            /* no reading at all counts half: a far wall seen through an
+             * opening is an opening at once, a dropout of a sample or two
+             * (a GP2D12 sample lasts ~12 mm of travel) is not */
+            op->open_mm[side] += ffr_ir_valid(cfg, d) ? step_mm : 0.5f * step_mm;
             op->since_open_mm[side] = 0.0f;
             if (op->seen[side] && !op->opened[side] && op->open_mm[side] >= cfg->open_confirm_mm) {
                 if (op->front_saw[side]) {

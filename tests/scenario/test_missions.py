@@ -79,3 +79,34 @@ def test_doors_moved_along_their_walls(ffr_mission, room: int) -> None:
     res, _ = ffr_mission(make_scenario(arena=arena, room=room), record=False)
     assert res.outcome == "home", res.detail
     assert res.wall_contacts == 0
+
+
+def _door_corner_pockets(n: int) -> list[tuple[float, float]]:
+    """n legal spots in the door-corner pockets, drawn with a fixed seed (the arena's own sampler)."""
+    import numpy as np
+
+    from harness.properties import in_door_corner
+
+    arena = load_arena()
+    rng = np.random.default_rng(123)
+    spots: list[tuple[float, float]] = []
+    while len(spots) < n:
+        room = int(rng.integers(1, 5))
+        x, y = arena.random_candle(room, rng)
+        if in_door_corner(arena, x, y):
+            spots.append((x, y))
+    return spots
+
+
+# Candles wedged by the door's wall and a side wall, and candles hugging the door's wall
+# beyond the door: the approach nose first stopped with the fans out of reach; the door-wall
+# guard now turns the robot along that wall (docs/firmware.md, Robustness).
+WALL_HUGGING = [*_door_corner_pockets(6), (0.695, 0.795), (0.695, 0.845), (0.70, 1.925), (0.65, 1.93)]
+
+
+@pytest.mark.parametrize("candle", WALL_HUGGING, ids=[f"({x:.3f},{y:.3f})" for x, y in WALL_HUGGING])
+def test_candles_by_the_door_wall_are_put_out(ffr_mission, candle) -> None:
+    scn = make_scenario(candle=candle, noise="typical", seed=1)
+    res, _ = ffr_mission(scn, record=False)
+    assert res.outcome == "home", res.detail
+    assert res.wall_contacts == 0
