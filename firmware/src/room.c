@@ -36,6 +36,9 @@ enum {
 #define DOOR_WALL_FACE_MM 25.0f
 /* the flame's balance (left - right over both) about 20 degrees off the heading */
 #define FLAME_AIM_BAL 0.5f
+/* the flame sum (over the dark level) at about 26 cm of the fans, in units
+ * of flame_detect: the fans (30 cm reach) put it out from there */
+#define FLAME_REACH 14.0f
 /* clearance kept beyond the body's corner radius for the scan's turn in place */
 #define SCAN_MARGIN_MM 35.0f
 
@@ -194,13 +197,15 @@ static float door_wall_guard(const ffr_state_t *st, float bal, int *stop)
  * wall is about to touch a front corner. The GP2D12 folds back under 10 cm,
  * so this must act while the wall is still seen, not at contact.
  */
-static float approach_guard(const ffr_state_t *st, float bal, int *stop)
+static float approach_guard(const ffr_state_t *st, float bal, int *stop, int *near)
 {
     const ffr_config_t *cfg = &st->cfg;
     static const int rangers[3] = {FFR_IR_CF, FFR_IR_LF, FFR_IR_RF};
     float w = 0.0f;
+    float wd;
     int k;
     *stop = 0;
+    *near = 0;
     for (k = 0; k < 3; ++k) {
         int i = rangers[k];
         float d = st->ir_mm[i];
@@ -217,14 +222,18 @@ static float approach_guard(const ffr_state_t *st, float bal, int *stop)
             float push = (cfg->guard_side_mm - (side_gap > 0.0f ? side_gap : 0.0f)) * 0.03f;
             if (i != FFR_IR_CF) {
                 w += py > 0.0f ? -push : push;
+                *near = 1;
             }
             if (side_gap < cfg->guard_stop_mm && front_gap < cfg->guard_stop_mm) {
                 *stop = 1;
             }
         }
     }
-    w += door_wall_guard(st, bal, stop);
-    return w;
+    wd = door_wall_guard(st, bal, stop);
+    if (wd != 0.0f) {
+        *near = 1;
+    }
+    return w + wd;
 }
 
 /*
@@ -330,8 +339,14 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         /* the flame's balance: + on the left */
         float bal = ((float)in->flame[0] - (float)in->flame[1]) / (sig > 1.0f ? sig : 1.0f);
         float v;
-        int guard_stop;
-        float guard_w = approach_guard(st, bal, &guard_stop);
+        int guard_stop, guard_near;
+        float guard_w = approach_guard(st, bal, &guard_stop, &guard_near);
+        /* beside a wall with the flame already within the fans' reach: stop
+         * here rather than creep on along the wall; a part reading long
+         * lets a front corner reach the wall before the guard stops it */
+        if (guard_near && sig >= FLAME_REACH * cfg->flame_detect) {
+            guard_stop = 1;
+        }
         if (st->lines.edge || guard_stop || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
             ffr_stop(st);
             if (nose_in_doorway(st) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
