@@ -143,7 +143,7 @@ test: setup firmware-host $(BUILD)/host/ffr_unit_tests $(BUILD)/host/ffr_wire_te
 
 test-thorough: setup firmware-host
 	$(VENV)/bin/pytest -q tests/property --ffr-profile thorough
-	$(VENV)/bin/ffr sweep -n 10 --seeds 0:25 --noise envelope --no-progress --min-success 98
+	$(VENV)/bin/ffr sweep -n 10 --seeds 0:25 --noise envelope --no-progress --min-success 99
 
 envelope: setup firmware-host
 	$(PY) -m harness.envelope
