@@ -27,7 +27,9 @@ def encode(data: bytes) -> bytes:
     return bytes(out)
 
 
-def decode(block: bytes) -> bytes:
+def decode(block: bytes, cap: int | None = None) -> bytes:
+    """Decode one block. With ``cap``, more than cap bytes of output is Status.LONG, found at the
+    same point as the C decoder with a cap-byte buffer (so a damaged frame gets the same verdict)."""
     n = len(block)
     if n == 0:
         raise DecodeError(Status.SHORT, "empty COBS block")
@@ -40,10 +42,14 @@ def decode(block: bytes) -> bytes:
         run = block[i + 1:i + code]
         if len(run) != code - 1:
             raise DecodeError(Status.COBS, f"run at {i} claims {code - 1} bytes, {len(run)} left")
+        if cap is not None and len(out) + len(run) > cap:
+            raise DecodeError(Status.LONG, f"more than {cap} bytes decoded")
         if 0 in run:
             raise DecodeError(Status.COBS, f"zero byte inside the run at {i}")
         out += run
         i += code
         if code != 0xFF and i < n:
+            if cap is not None and len(out) >= cap:
+                raise DecodeError(Status.LONG, f"more than {cap} bytes decoded")
             out.append(0)
     return bytes(out)

@@ -161,7 +161,7 @@ def frame_decode(frame: bytes) -> bytes:
         raise DecodeError(Status.SHORT, f"frame of {len(frame)} bytes")
     if len(frame) > FRAME_MAX:
         raise DecodeError(Status.LONG, f"frame of {len(frame)} bytes (at most {FRAME_MAX})")
-    data = cobs.decode(frame)
+    data = cobs.decode(frame, cap=MSG_MAX + 2)  # the buffer ffr_frame_decode's callers give it
     if len(data) < 3:
         raise DecodeError(Status.SHORT, f"{len(data)} bytes after COBS")
     if crc16(data) != 0:

@@ -36,14 +36,6 @@ static void begin_current(ffr_state_t *st)
     case FFR_OP_TURN: {
         int16_t deg = s->param != 0 ? s->param : st->route.case_turn_deg;
         st->route.target_rad = st->route.heading_ref_rad + (float)deg * FFR_DEG;
-#ifdef FFR_DEBUG_CAL
-        {
-            extern int printf(const char *, ...);
-            printf("TURN pc %u t %u ref %.2f odo %.2f deg %d biasL %.2f biasR %.2f\n", st->route.pc, st->t_ms,
-                   (double)(st->route.heading_ref_rad / FFR_DEG), (double)(st->odo.heading_rad / FFR_DEG), deg,
-                   (double)(st->wall_cal.bias_rad[0] / FFR_DEG), (double)(st->wall_cal.bias_rad[1] / FFR_DEG));
-        }
-#endif
         st->state = FFR_ST_TURN;
         break;
     }
@@ -125,14 +117,6 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
                     /* go on until the origin is in the middle of the opening */
                     int side = s->event == FFR_EV_OPEN_L ? FFR_SIDE_LEFT : FFR_SIDE_RIGHT;
                     st->route.goal_mm = st->open.open_at_mm[side] + cfg->hallway_half_mm;
-#ifdef FFR_DEBUG_CAL
-                    {
-                        extern int printf(const char *, ...);
-                        printf("OPEN pc %u t %u dist %.0f open_at %.0f goal %.0f front_saw %d\n", st->route.pc, st->t_ms,
-                               (double)st->odo.dist_mm, (double)st->open.open_at_mm[side], (double)st->route.goal_mm,
-                               st->open.front_saw[side]);
-                    }
-#endif
                     st->route.phase = PH_WRAP;
                 } else {
                     ffr_stop(st);

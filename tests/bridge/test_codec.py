@@ -142,6 +142,18 @@ def _c_status(c: CCodec, frame: bytes) -> int:
     return 0
 
 
+def test_a_damaged_code_byte_that_decodes_past_the_buffer_is_too_long_in_both(c: CCodec) -> None:
+    """Hypothesis found it: the largest message (a RESET, long runs without zeros) with its first
+    COBS code byte damaged decodes to more than MSG_MAX + 2 bytes; C stops at its buffer (LONG),
+    and the Python mirror must say the same, not go on to a CRC verdict."""
+    msg = bytes([int(MsgType.RESET)]) + bytes([1]) * (codec.MSG_MAX - 1)
+    b = bytearray(codec.frame_encode(msg)[:-1])
+    for bit in range(8):
+        frame = bytearray(b)
+        frame[0] ^= 1 << bit
+        assert _py_status(bytes(frame)) == _c_status(c, bytes(frame)) == int(Status.LONG)
+
+
 @FAST
 @given(messages(), st.lists(st.tuples(st.integers(0, 10_000), st.integers(0, 7)), min_size=1, max_size=3),
        st.integers(0, 3))
