@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import pytest
@@ -72,7 +73,7 @@ def test_arc_radius_from_speed_ratio(h):
     np.testing.assert_allclose(poses[:, 1], cy - radius * np.cos(th), atol=1e-12)
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=200, deadline=None, derandomize=bool(os.environ.get("CI")))  # same examples on CI
 @given(ds=st.floats(-0.5, 0.5), dth=st.floats(-7.0, 7.0), th=st.floats(-4.0, 4.0))
 def test_arc_step_is_exact_for_constant_u_r(ds, dth, th):
     """Two half steps of a constant-curvature move land where one full step does."""
