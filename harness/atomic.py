@@ -3,7 +3,9 @@ rename, so an error never leaves a half-written file where the output goes."""
 
 from __future__ import annotations
 
+import json
 import os
+import sys
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -40,3 +42,13 @@ def write_bytes_atomic(path: str | Path, data: bytes, mode: int | None = None) -
 
 def write_text_atomic(path: str | Path, text: str, mode: int | None = None) -> None:
     write_bytes_atomic(path, text.encode("utf-8"), mode)
+
+
+def write_json(dest: str | Path, payload: object) -> None:
+    """A command's ``--json`` output: indented JSON to standard output for ``-``, else to the file
+    (atomically)."""
+    text = json.dumps(payload, indent=2) + "\n"
+    if str(dest) == "-":
+        sys.stdout.write(text)
+    else:
+        write_text_atomic(dest, text)

@@ -19,7 +19,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, NoReturn
 
-from harness.atomic import write_text_atomic
+from harness.atomic import write_json
 from sim_plant.errors import FfrInputError
 
 # The paper's Table 1 (its robot, its parameters).
@@ -211,11 +211,7 @@ def _execute_b2b(args: argparse.Namespace) -> int:
         payload["target_profile"] = {"steps": prof.steps, "mean_insn": round(prof.mean_insn, 1),
                                      "max_insn": prof.max_insn}
     if args.json:
-        text = json.dumps(payload, indent=2) + "\n"
-        if args.json == "-":
-            sys.stdout.write(text)
-        else:
-            write_text_atomic(args.json, text)
+        write_json(args.json, payload)
     return EXIT_OK if rep.identical else EXIT_MISSION
 
 
@@ -261,11 +257,7 @@ def _execute(args: argparse.Namespace) -> int:
         if args.json != "-":
             print(_summary(results[0]))
     if args.json:
-        text = json.dumps(payload, indent=2) + "\n"
-        if args.json == "-":
-            sys.stdout.write(text)
-        else:
-            write_text_atomic(args.json, text)
+        write_json(args.json, payload)
     if args.plot:
         from harness.plot import save_missions
         save_missions(args.plot, missions)

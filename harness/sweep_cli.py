@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import json
-import sys
 from typing import Any
 
 from sim_plant.errors import FfrInputError
@@ -117,7 +115,7 @@ def _check(args: argparse.Namespace) -> None:
 
 def run_sweep(args: argparse.Namespace) -> int:
     from harness import sweep as sw
-    from harness.atomic import write_text_atomic
+    from harness.atomic import write_json
     from harness.cli import UsageError
 
     _check(args)
@@ -148,11 +146,7 @@ def run_sweep(args: argparse.Namespace) -> int:
                    "missions_per_s": len(rows) / wall if wall > 0 else None,
                    "failures": [{"outcome": r["outcome"], "detail": r["detail"], "replay": r["replay"]}
                                 for r in rows if not r["success"]]}
-        body = json.dumps(payload, indent=2) + "\n"
-        if args.json == "-":
-            sys.stdout.write(body)
-        else:
-            write_text_atomic(args.json, body)
+        write_json(args.json, payload)
     if args.min_success is not None and rate < args.min_success:
         return 1
     return 0

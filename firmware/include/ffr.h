@@ -261,8 +261,9 @@ typedef struct {
     uint8_t reserved[2];
 } ffr_hit_window_t;
 
-/* The followed wall's direction measured from travel (wall_calibration.c):
- * a window of straight-ish travel beside one wall, and what it teaches. */
+/* What walls teach over stretches of travel: the followed side's two-ranger
+ * window and each side's learned tilt (wall_calibration.c), and each side
+ * ranger's hit window (wall_direction.c). */
 typedef struct {
     float s0_mm;                   /* odometry distance at the window's start */
     float h0_rad;                  /* heading at the window's start           */

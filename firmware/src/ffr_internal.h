@@ -20,6 +20,8 @@ float ffr_sqrtf(float x);
 #define FFR_IR_NONE(cfg) ((cfg)->ir_max_mm + 1.0f)
 float ffr_ir_mv_to_mm(const ffr_config_t *cfg, uint16_t mv);
 int ffr_ir_valid(const ffr_config_t *cfg, float d_mm);
+/* Where ranger i's reading d_mm puts the hit, in the body frame (x ahead, y left), mm. */
+void ffr_ir_hit(const ffr_config_t *cfg, int i, float d_mm, float *px, float *py);
 
 /* odometry.c */
 void ffr_odometry_reset(ffr_odometry_t *o);
@@ -42,8 +44,9 @@ typedef struct {
     float angle_rad;     /* wall direction relative to the heading   */
 } ffr_wall_t;
 ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], int side);
-/* Does ranger i's hit at d_mm lie on a wall beside the robot (not across an opening)? */
-int ffr_hit_beside(const ffr_config_t *cfg, int i, float d_mm);
+/* Does ranger i's hit at d_mm lie on a wall beside the robot (not across an
+ * opening)? The hit's body-frame point is left in *px, *py when it is valid. */
+int ffr_hit_beside(const ffr_config_t *cfg, int i, float d_mm, float *px, float *py);
 /* Yaw rate (rad/s) that brings the robot to wall_target_mm, parallel to the wall. */
 float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side);
 /* Yaw rate (rad/s) that holds heading_ref. */

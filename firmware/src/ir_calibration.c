@@ -26,3 +26,10 @@ float ffr_ir_mv_to_mm(const ffr_config_t *cfg, uint16_t mv)
 }
 
 int ffr_ir_valid(const ffr_config_t *cfg, float d_mm) { return d_mm <= cfg->ir_max_mm; }
+
+void ffr_ir_hit(const ffr_config_t *cfg, int i, float d_mm, float *px, float *py)
+{
+    float a = cfg->ir_angle_deg[i] * FFR_DEG;
+    *px = cfg->ir_x_mm[i] + d_mm * ffr_cosf(a);
+    *py = cfg->ir_y_mm[i] + d_mm * ffr_sinf(a);
+}

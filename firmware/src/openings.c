@@ -41,11 +41,6 @@ void ffr_openings_reset(ffr_openings_t *op)
     }
 }
 
-static float hit_ahead(const ffr_config_t *cfg, int i, float d)
-{
-    return cfg->ir_x_mm[i] + d * ffr_cosf(cfg->ir_angle_deg[i] * FFR_DEG);
-}
-
 void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT],
                          float dist_mm, float step_mm)
 {
@@ -53,13 +48,13 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const floa
     for (side = 0; side < 2; ++side) {
         int f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
         int r = side == FFR_SIDE_LEFT ? FFR_IR_LR : FFR_IR_RR;
-        float d = ir_mm[f];
-        float dr = ir_mm[r];
-        /* a wall beside the robot, not one across an opening (wall_follow.c) */
-        int front = ffr_hit_beside(cfg, f, d);
-        int rear = ffr_hit_beside(cfg, r, dr);
+        /* a wall beside the robot, not one across an opening (wall_follow.c);
+         * fx, rx: how far ahead the hits are, fy, ry: to the side */
+        float fx = 0.0f, fy = 0.0f, rx = 0.0f, ry = 0.0f;
+        int front = ffr_hit_beside(cfg, f, ir_mm[f], &fx, &fy);
+        int rear = ffr_hit_beside(cfg, r, ir_mm[r], &rx, &ry);
         if (front) {
-            float lat = ffr_absf(cfg->ir_y_mm[f] + d * ffr_sinf(cfg->ir_angle_deg[f] * FFR_DEG));
+            float lat = ffr_absf(fy);
             if (op->front_lat_mm[side] < 0.0f) {
                 op->front_lat_mm[side] = lat;
             } else if (lat - op->front_lat_mm[side] > FRONT_JUMP_MM) {
@@ -69,14 +64,14 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const floa
             }
         }
         if (rear) {
-            float lat = ffr_absf(cfg->ir_y_mm[r] + dr * ffr_sinf(cfg->ir_angle_deg[r] * FFR_DEG));
+            float lat = ffr_absf(ry);
             if (op->rear_lat0_mm[side] < 0.0f) {
                 op->rear_lat0_mm[side] = lat;
             } else if (ffr_absf(lat - op->rear_lat0_mm[side]) > REAR_LAT_DRIFT_MM) {
                 op->rear_ok[side] = 0; /* not a wall alongside: for good, this step */
             }
             op->rear_open_mm[side] = 0.0f;
-            op->rear_at_mm[side] = dist_mm + hit_ahead(cfg, r, dr);
+            op->rear_at_mm[side] = dist_mm + rx;
         } else {
             op->rear_open_mm[side] += step_mm;
         }
@@ -95,13 +90,13 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const floa
             op->since_open_mm[side] += step_mm;
             if (!op->opened[side]) {
                 /* where the wall ends if the next reading is open: the hit point ahead */
-                op->open_at_mm[side] = dist_mm + hit_ahead(cfg, f, d);
+                op->open_at_mm[side] = dist_mm + fx;
             }
         } else {
             /* no reading at all counts half: a far wall seen through an
              * opening is an opening at once, a dropout of a sample or two
              * (a GP2D12 sample lasts ~12 mm of travel) is not */
-            op->open_mm[side] += ffr_ir_valid(cfg, d) ? step_mm : 0.5f * step_mm;
+            op->open_mm[side] += ffr_ir_valid(cfg, ir_mm[f]) ? step_mm : 0.5f * step_mm;
             op->since_open_mm[side] = 0.0f;
             if (op->seen[side] && !op->opened[side] && op->open_mm[side] >= cfg->open_confirm_mm) {
                 if (op->front_saw[side]) {

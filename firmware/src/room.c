@@ -209,13 +209,11 @@ static float approach_guard(const ffr_state_t *st, float bal, int *stop, int *ne
     for (k = 0; k < 3; ++k) {
         int i = rangers[k];
         float d = st->ir_mm[i];
-        float a, px, py, side_gap, front_gap;
+        float px, py, side_gap, front_gap;
         if (!ffr_ir_valid(cfg, d)) {
             continue;
         }
-        a = cfg->ir_angle_deg[i] * FFR_DEG;
-        px = cfg->ir_x_mm[i] + d * ffr_cosf(a);
-        py = cfg->ir_y_mm[i] + d * ffr_sinf(a);
+        ffr_ir_hit(cfg, i, d, &px, &py);
         side_gap = ffr_absf(py) - cfg->body_half_width_mm;
         front_gap = px - cfg->body_front_mm;
         if (px > 0.0f && side_gap < cfg->guard_side_mm && front_gap < cfg->guard_side_mm) {

@@ -84,18 +84,15 @@ int ffr_wall_dir_update(ffr_wall_cal_t *c, const ffr_config_t *cfg, const ffr_od
 {
     int i, found = 0;
     float sum = 0.0f;
+    const float ch = ffr_cosf(o->heading_rad);
+    const float sh = ffr_sinf(o->heading_rad);
     for (i = FFR_IR_LF; i <= FFR_IR_RR; ++i) {
         ffr_hit_window_t *hw = &c->hits[i - 1];
-        float a, bx, by, ch, sh, x, y, dir;
-        if (!ffr_hit_beside(cfg, i, ir_mm[i])) {
+        float bx, by, x, y, dir;
+        if (!ffr_hit_beside(cfg, i, ir_mm[i], &bx, &by)) {
             restart(hw);
             continue;
         }
-        a = cfg->ir_angle_deg[i] * FFR_DEG;
-        bx = cfg->ir_x_mm[i] + ir_mm[i] * ffr_cosf(a);
-        by = cfg->ir_y_mm[i] + ir_mm[i] * ffr_sinf(a);
-        ch = ffr_cosf(o->heading_rad);
-        sh = ffr_sinf(o->heading_rad);
         x = o->x_mm + ch * bx - sh * by;
         y = o->y_mm + sh * bx + ch * by;
         if (hw->n > 0u && ffr_absf(o->heading_rad - hw->h0_rad) > HIT_TURN_DEG * FFR_DEG) {

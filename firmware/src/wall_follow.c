@@ -7,13 +7,6 @@
  */
 #include "ffr_internal.h"
 
-static void hit_point(const ffr_config_t *cfg, int i, float d, float *px, float *py)
-{
-    float a = cfg->ir_angle_deg[i] * FFR_DEG;
-    *px = cfg->ir_x_mm[i] + d * ffr_cosf(a);
-    *py = cfg->ir_y_mm[i] + d * ffr_sinf(a);
-}
-
 /* a front hit within this of the wall ahead (forward, mm) is on that wall */
 #define AHEAD_MARGIN_MM 70.0f
 
@@ -29,14 +22,13 @@ static void hit_point(const ffr_config_t *cfg, int i, float d, float *px, float 
  * an opening (measured with the wall calibration in place: 98.4 -> 99.5 %
  * of 800 missions over 200 robots, docs/robustness.md).
  */
-int ffr_hit_beside(const ffr_config_t *cfg, int i, float d_mm)
+int ffr_hit_beside(const ffr_config_t *cfg, int i, float d_mm, float *px, float *py)
 {
-    float px, py;
     if (!ffr_ir_valid(cfg, d_mm)) {
         return 0;
     }
-    hit_point(cfg, i, d_mm, &px, &py);
-    return ffr_absf(py) < cfg->open_mm;
+    ffr_ir_hit(cfg, i, d_mm, px, py);
+    return ffr_absf(*py) < cfg->open_mm;
 }
 
 ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], int side)
@@ -44,29 +36,21 @@ ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_C
     ffr_wall_t w;
     int f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
     int r = side == FFR_SIDE_LEFT ? FFR_IR_LR : FFR_IR_RR;
-    int fv = ffr_ir_valid(cfg, ir_mm[f]);
-    int rv = ffr_ir_valid(cfg, ir_mm[r]);
     float fx = 0.0f, fy = 0.0f, rx = 0.0f, ry = 0.0f;
+    int fv = ffr_hit_beside(cfg, f, ir_mm[f], &fx, &fy);
+    int rv = ffr_hit_beside(cfg, r, ir_mm[r], &rx, &ry);
     w.valid = 0;
     w.angle_valid = 0;
     w.dist_mm = 0.0f;
     w.angle_rad = 0.0f;
-    if (fv) {
-        hit_point(cfg, f, ir_mm[f], &fx, &fy);
-        fv = ffr_hit_beside(cfg, f, ir_mm[f]);
-        /* nearing a corner, the front ranger's beam reaches the wall ahead
-         * before the side wall ends: a hit about as far ahead as the centre
-         * ranger puts that wall is on it. Steering away from it turned the
-         * robot off its wall before the FRONT event could stop it (a centre
-         * part reading long lets the robot that close). */
-        if (fv && ffr_ir_valid(cfg, ir_mm[FFR_IR_CF])
-            && fx > ir_mm[FFR_IR_CF] + cfg->ir_x_mm[FFR_IR_CF] - AHEAD_MARGIN_MM) {
-            fv = 0;
-        }
-    }
-    if (rv) {
-        hit_point(cfg, r, ir_mm[r], &rx, &ry);
-        rv = ffr_hit_beside(cfg, r, ir_mm[r]);
+    /* nearing a corner, the front ranger's beam reaches the wall ahead before
+     * the side wall ends: a hit about as far ahead as the centre ranger puts
+     * that wall is on it. Steering away from it turned the robot off its wall
+     * before the FRONT event could stop it (a centre part reading long lets
+     * the robot that close). */
+    if (fv && ffr_ir_valid(cfg, ir_mm[FFR_IR_CF])
+        && fx > ir_mm[FFR_IR_CF] + cfg->ir_x_mm[FFR_IR_CF] - AHEAD_MARGIN_MM) {
+        fv = 0;
     }
     if (fv && rv) {
         float wx = fx - rx;

@@ -44,6 +44,71 @@ void rig_tick(rig_t *r)
     r->in.seq += 1u;
 }
 
+void rig_line(rig_t *r, int before, int on)
+{
+    int i;
+    for (i = 0; i < before; ++i) {
+        rig_tick(r);
+    }
+    r->in.line = 1;
+    for (i = 0; i < on; ++i) {
+        rig_tick(r);
+    }
+    r->in.line = 0;
+}
+
+void rig_room_route(ffr_config_t *cfg, int home)
+{
+    cfg->route[0].op = FFR_OP_ROOM;
+    cfg->route[0].arg = 1;
+    cfg->route[1].op = FFR_OP_END;
+    cfg->route_len = 2;
+    if (home) {
+        cfg->route[2].op = FFR_OP_HOME;
+        cfg->route[2].side = FFR_SIDE_NONE;
+        cfg->route_len = 3;
+        cfg->return_start[0] = 2;
+    }
+}
+
+void rig_travel(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float *d, int ticks)
+{
+    int i;
+    for (i = 0; i < ticks; ++i, *d += 3.0f) {
+        ffr_openings_update(op, cfg, ir_mm, *d, 3.0f);
+    }
+}
+
+float rig_beam_mm(const ffr_config_t *cfg, const rig_walls_t *w, int i, float x, float y, float th)
+{
+    float c = ffr_cosf(th), s = ffr_sinf(th);
+    float mx = x + c * cfg->ir_x_mm[i] - s * cfg->ir_y_mm[i];
+    float my = y + s * cfg->ir_x_mm[i] + c * cfg->ir_y_mm[i];
+    float ux = ffr_cosf(th + cfg->ir_angle_deg[i] * FFR_DEG);
+    float uy = ffr_sinf(th + cfg->ir_angle_deg[i] * FFR_DEG);
+    float best = FFR_IR_NONE(cfg);
+    float d;
+    if (uy > 1e-3f) {
+        d = (w->left_y - my) / uy;
+        best = d < best ? d : best;
+    }
+    if (uy < -1e-3f) {
+        d = (w->right_y - my) / uy;
+        if (w->jog_x != 0.0f && mx + d * ux > w->jog_x) {
+            d = (w->right_y + w->jog_dy - my) / uy;
+        }
+        best = d < best ? d : best;
+    }
+    if (w->ahead_x != 0.0f && ux > 1e-3f) {
+        d = (w->ahead_x - mx) / ux;
+        best = d < best ? d : best;
+    }
+    if (best > cfg->ir_max_mm) {
+        return FFR_IR_NONE(cfg);
+    }
+    return best + w->part_mm[i];
+}
+
 int rig_run_until_state(rig_t *r, uint8_t state, int max_ticks)
 {
     int i;

@@ -54,13 +54,7 @@ static void room_task(void)
     ffr_config_default(&cfg);
     cfg.route_len = 0;
     /* a one-room route: ROOM(1), END; the way home is HOME */
-    cfg.route[0].op = FFR_OP_ROOM;
-    cfg.route[0].arg = 1;
-    cfg.route[1].op = FFR_OP_END;
-    cfg.route[2].op = FFR_OP_HOME;
-    cfg.route[2].side = FFR_SIDE_NONE;
-    cfg.route_len = 3;
-    cfg.return_start[0] = 2;
+    rig_room_route(&cfg, 1);
     rig_init(&r, &cfg);
     r.in.start = 1;
     rig_tick(&r);
@@ -68,15 +62,7 @@ static void room_task(void)
     CHECK(r.out.room == 1);
 
     /* the doorway line passes under the sensor */
-    for (i = 0; i < 20; ++i) {
-        rig_tick(&r);
-    }
-    r.in.line = 1;
-    rig_tick(&r);
-    rig_tick(&r);
-    rig_tick(&r);
-    rig_tick(&r);
-    r.in.line = 0;
+    rig_line(&r, 20, 4);
     CHECK((r.out.flags & FFR_FLAG_IN_ROOM) != 0);
     CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 400));
 
@@ -107,11 +93,7 @@ static void room_task(void)
         rig_tick(&r);
     }
     /* the candle circle: stop, fans on */
-    r.in.line = 1;
-    rig_tick(&r);
-    rig_tick(&r);
-    rig_tick(&r);
-    r.in.line = 0;
+    rig_line(&r, 0, 3);
     rig_tick(&r);
     CHECK(r.out.state == FFR_ST_EXTINGUISH);
     CHECK(r.out.fan == 1);
@@ -129,23 +111,12 @@ static void room_task(void)
     /* out across the doorway line, then the way home starts */
     CHECK(rig_run_until_driving(&r, 400));
     CHECK(r.out.state == FFR_ST_EXIT);
-    r.in.line = 1;
-    rig_tick(&r);
-    rig_tick(&r);
-    rig_tick(&r);
-    r.in.line = 0;
+    rig_line(&r, 0, 3);
     CHECK((r.out.flags & FFR_FLAG_IN_ROOM) == 0);
     CHECK(rig_run_until_state(&r, FFR_ST_HOMING, 400));
     CHECK(r.out.rooms_searched == 1);
     /* the home circle: stop just past it */
-    for (i = 0; i < 40; ++i) {
-        rig_tick(&r);
-    }
-    r.in.line = 1;
-    rig_tick(&r);
-    rig_tick(&r);
-    rig_tick(&r);
-    r.in.line = 0;
+    rig_line(&r, 40, 3);
     CHECK(rig_run_until_state(&r, FFR_ST_DONE, 400));
     CHECK((r.out.flags & FFR_FLAG_DONE) != 0);
     rig_tick(&r);
@@ -157,28 +128,17 @@ static void no_flame_anywhere(void)
     ffr_config_t cfg;
     rig_t r;
     ffr_config_default(&cfg);
-    cfg.route[0].op = FFR_OP_ROOM;
-    cfg.route[0].arg = 1;
-    cfg.route[1].op = FFR_OP_END;
-    cfg.route_len = 2;
+    rig_room_route(&cfg, 0);
     rig_init(&r, &cfg);
     r.in.start = 1;
     rig_tick(&r);
-    r.in.line = 1;
-    rig_tick(&r);
-    rig_tick(&r);
-    rig_tick(&r);
-    r.in.line = 0;
+    rig_line(&r, 0, 3);
     CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 400));
     /* a full turn with no flame: leave the room */
     CHECK(rig_run_until_state(&r, FFR_ST_EXIT, 2000));
     CHECK((r.out.flags & FFR_FLAG_FLAME_SEEN) == 0);
     CHECK(rig_run_until_driving(&r, 400));
-    r.in.line = 1;
-    rig_tick(&r);
-    rig_tick(&r);
-    rig_tick(&r);
-    r.in.line = 0;
+    rig_line(&r, 0, 3);
     CHECK(rig_run_until_state(&r, FFR_ST_FAILED, 400));
     CHECK(r.out.fail_code == FFR_FAIL_NO_FLAME);
     CHECK(r.out.pwm[0] == 0 && r.out.pwm[1] == 0);

@@ -14,17 +14,13 @@ void suite_openings(void)
     /* open from the start: no wall seen, so no opening (a corridor behind
      * a junction is not a door) */
     ffr_openings_reset(&op);
-    for (i = 0; i < 50; ++i, d += 3.0f) {
-        ffr_openings_update(&op, &cfg, ir, d, 3.0f);
-    }
+    rig_travel(&op, &cfg, ir, &d, 50);
     CHECK(!ffr_opening(&op, FFR_SIDE_LEFT));
     /* a wall for 150 mm, then open */
     ffr_openings_reset(&op);
     d = 0.0f;
     ir[FFR_IR_LF] = 226.0f;
-    for (i = 0; i < 50; ++i, d += 3.0f) {
-        ffr_openings_update(&op, &cfg, ir, d, 3.0f);
-    }
+    rig_travel(&op, &cfg, ir, &d, 50);
     CHECK(!ffr_opening(&op, FFR_SIDE_LEFT));
     {
         float wall_end = op.open_at_mm[FFR_SIDE_LEFT];
@@ -33,13 +29,9 @@ void suite_openings(void)
     }
     /* the beam through the opening meets a far wall (565 mm to the side) */
     ir[FFR_IR_LF] = 700.0f;
-    for (i = 0; i < 5; ++i, d += 3.0f) {
-        ffr_openings_update(&op, &cfg, ir, d, 3.0f);
-    }
+    rig_travel(&op, &cfg, ir, &d, 5);
     CHECK(!ffr_opening(&op, FFR_SIDE_LEFT)); /* 15 mm < confirm */
-    for (i = 0; i < 5; ++i, d += 3.0f) {
-        ffr_openings_update(&op, &cfg, ir, d, 3.0f);
-    }
+    rig_travel(&op, &cfg, ir, &d, 5);
     CHECK(ffr_opening(&op, FFR_SIDE_LEFT));
     CHECK(!ffr_opening(&op, FFR_SIDE_RIGHT));
     CHECK_NEAR(op.since_open_mm[FFR_SIDE_LEFT], 0.0, 1e-6);
@@ -53,17 +45,11 @@ void suite_openings(void)
         rig_no_walls(&cfg, ir2);
         ffr_openings_reset(&op2);
         ir2[FFR_IR_LF] = 226.0f;
-        for (i = 0; i < 50; ++i, d2 += 3.0f) {
-            ffr_openings_update(&op2, &cfg, ir2, d2, 3.0f);
-        }
+        rig_travel(&op2, &cfg, ir2, &d2, 50);
         ir2[FFR_IR_LF] = FFR_IR_NONE(&cfg);
-        for (i = 0; i < 10; ++i, d2 += 3.0f) {
-            ffr_openings_update(&op2, &cfg, ir2, d2, 3.0f);
-        }
+        rig_travel(&op2, &cfg, ir2, &d2, 10);
         CHECK(!ffr_opening(&op2, FFR_SIDE_LEFT));
-        for (i = 0; i < 4; ++i, d2 += 3.0f) {
-            ffr_openings_update(&op2, &cfg, ir2, d2, 3.0f);
-        }
+        rig_travel(&op2, &cfg, ir2, &d2, 4);
         CHECK(ffr_opening(&op2, FFR_SIDE_LEFT));
     }
     /* the front hit jumping out 100 mm to the side (through a door, still
@@ -75,14 +61,13 @@ void suite_openings(void)
         rig_no_walls(&cfg, ir3);
         ffr_openings_reset(&op3);
         ir3[FFR_IR_LF] = 226.0f;
-        for (i = 0; i < 50; ++i, d3 += 3.0f) {
-            ffr_openings_update(&op3, &cfg, ir3, d3, 3.0f);
-        }
+        rig_travel(&op3, &cfg, ir3, &d3, 50);
         ir3[FFR_IR_LF] = 226.0f + 100.0f / 0.70710678f;
-        CHECK(ffr_hit_beside(&cfg, FFR_IR_LF, ir3[FFR_IR_LF]));
-        for (i = 0; i < 8; ++i, d3 += 3.0f) {
-            ffr_openings_update(&op3, &cfg, ir3, d3, 3.0f);
+        {
+            float px, py;
+            CHECK(ffr_hit_beside(&cfg, FFR_IR_LF, ir3[FFR_IR_LF], &px, &py));
         }
+        rig_travel(&op3, &cfg, ir3, &d3, 8);
         CHECK(ffr_opening(&op3, FFR_SIDE_LEFT));
         /* and the wall's end is the last hit on the wall, not the far one */
         CHECK_NEAR(op3.open_at_mm[FFR_SIDE_LEFT], 147.0f + 80.0f + 226.0f * 0.70710678f, 0.5);
@@ -96,8 +81,6 @@ void suite_openings(void)
     }
     /* latched: a wall seen again (the far side of a junction) does not undo it */
     ir[FFR_IR_LF] = 200.0f;
-    for (i = 0; i < 40; ++i, d += 3.0f) {
-        ffr_openings_update(&op, &cfg, ir, d, 3.0f);
-    }
+    rig_travel(&op, &cfg, ir, &d, 40);
     CHECK(ffr_opening(&op, FFR_SIDE_LEFT));
 }

@@ -14,27 +14,20 @@ static void openings_by_the_rear_ranger(void)
     ffr_openings_t op;
     float ir[FFR_IR_COUNT];
     float d = 0.0f;
-    int i;
     ffr_config_default(&cfg);
     rig_no_walls(&cfg, ir);
     /* a step that starts at the wall's end: the front ranger is already past
      * it, only the rear one sees the wall for 100 mm */
     ffr_openings_reset(&op);
     ir[FFR_IR_RR] = 226.0f;
-    for (i = 0; i < 34; ++i, d += 3.0f) {
-        ffr_openings_update(&op, &cfg, ir, d, 3.0f);
-    }
+    rig_travel(&op, &cfg, ir, &d, 34);
     CHECK(op.seen[FFR_SIDE_RIGHT] && !ffr_opening(&op, FFR_SIDE_RIGHT));
     /* the front ranger reading open is not enough: the wall is still beside */
     CHECK(!op.front_saw[FFR_SIDE_RIGHT]);
     ir[FFR_IR_RR] = FFR_IR_NONE(&cfg);
-    for (i = 0; i < 5; ++i, d += 3.0f) {
-        ffr_openings_update(&op, &cfg, ir, d, 3.0f);
-    }
+    rig_travel(&op, &cfg, ir, &d, 5);
     CHECK(!ffr_opening(&op, FFR_SIDE_RIGHT)); /* 15 mm < confirm */
-    for (i = 0; i < 3; ++i, d += 3.0f) {
-        ffr_openings_update(&op, &cfg, ir, d, 3.0f);
-    }
+    rig_travel(&op, &cfg, ir, &d, 3);
     CHECK(ffr_opening(&op, FFR_SIDE_RIGHT));
     /* the wall ended at the rear ranger's last hit point, behind the origin */
     CHECK_NEAR(op.open_at_mm[FFR_SIDE_RIGHT], 99.0f - 80.0f - 226.0f * 0.70710678f, 0.5);
@@ -86,24 +79,10 @@ static void enter_and_scan(rig_t *r, ffr_config_t *cfg, float flame_deg, float p
 {
     int i;
     ffr_config_default(cfg);
-    cfg->route[0].op = FFR_OP_ROOM;
-    cfg->route[0].arg = 1;
-    cfg->route[1].op = FFR_OP_END;
-    cfg->route[2].op = FFR_OP_HOME;
-    cfg->route[2].side = FFR_SIDE_NONE;
-    cfg->route_len = 3;
-    cfg->return_start[0] = 2;
+    rig_room_route(cfg, 1);
     rig_init(r, cfg);
     r->in.start = 1;
-    for (i = 0; i < 21; ++i) {
-        rig_tick(r);
-    }
-    r->in.line = 1;
-    rig_tick(r);
-    rig_tick(r);
-    rig_tick(r);
-    rig_tick(r);
-    r->in.line = 0;
+    rig_line(r, 21, 4);
     CHECK(rig_run_until_state(r, FFR_ST_SCAN, 400));
     for (i = 0; i < 600 && r->out.state == FFR_ST_SCAN; ++i) {
         float deg = r->st.odo.heading_rad / FFR_DEG - flame_deg;
@@ -161,7 +140,6 @@ static void flame_beyond_the_door_is_left_alone(void)
 {
     ffr_config_t cfg;
     rig_t r;
-    int i;
     /* a weak flame back toward the door wall: the guard stops the approach
      * at the wall with the flame still far, so it is not in this room */
     enter_and_scan(&r, &cfg, 125.0f, 300.0f);
@@ -176,23 +154,12 @@ static void flame_beyond_the_door_is_left_alone(void)
     rig_tick(&r);
     r.st.odo.x_mm = r.st.room.line_x_mm - cfg.line_sensor_x_mm * ffr_cosf(r.st.odo.heading_rad);
     r.st.odo.y_mm = r.st.room.line_y_mm - cfg.line_sensor_x_mm * ffr_sinf(r.st.odo.heading_rad);
-    r.in.line = 1;
-    rig_tick(&r);
-    rig_tick(&r);
-    rig_tick(&r);
-    r.in.line = 0;
+    rig_line(&r, 0, 3);
     CHECK(r.out.state == FFR_ST_TO_DOOR);
     CHECK(r.out.fan == 0 && r.st.room.flame_found == 0);
     /* the same line deep in the room is the candle circle: fans on */
     enter_and_scan(&r, &cfg, 60.0f, 900.0f);
-    for (i = 0; i < 20; ++i) {
-        rig_tick(&r);
-    }
-    r.in.line = 1;
-    rig_tick(&r);
-    rig_tick(&r);
-    rig_tick(&r);
-    r.in.line = 0;
+    rig_line(&r, 20, 3);
     CHECK(r.out.state == FFR_ST_EXTINGUISH);
 }
 

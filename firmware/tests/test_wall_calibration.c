@@ -125,22 +125,16 @@ typedef struct {
     rig_t r;
     float x, y, th;      /* true pose, mm and rad */
     int32_t enc_prev[2];
-    float wall_y;        /* a right wall along y = wall_y (< 0)       */
+    rig_walls_t walls;   /* a right wall only                         */
     float offset_mv[FFR_IR_COUNT]; /* each part's reading error   */
 } world_t;
 
 static uint16_t ranger_mv(const world_t *wd, const ffr_config_t *cfg, int i)
 {
-    float c = ffr_cosf(wd->th), s = ffr_sinf(wd->th);
-    float my = wd->y + s * cfg->ir_x_mm[i] + c * cfg->ir_y_mm[i];
-    float uy = ffr_sinf(wd->th + cfg->ir_angle_deg[i] * FFR_DEG);
-    float d, mv;
-    if (uy > -0.05f) {
-        return 0; /* looking away from the wall: nothing in range */
-    }
-    d = (wd->wall_y - my) / uy;
-    if (d > 800.0f) {
-        return 0;
+    float d = rig_beam_mm(cfg, &wd->walls, i, wd->x, wd->y, wd->th);
+    float mv;
+    if (!ffr_ir_valid(cfg, d)) {
+        return 0; /* nothing in range */
     }
     mv = cfg->ir_k_mv_mm / (d + cfg->ir_d0_mm) + cfg->ir_offset_mv + wd->offset_mv[i];
     return (uint16_t)(mv + 0.5f);
@@ -182,9 +176,12 @@ static void follow_wall(world_t *wd, float front_mv, float rear_mv, float odo_er
     rig_init(&wd->r, &cfg);
     wd->x = wd->y = wd->th = 0.0f;
     wd->enc_prev[0] = wd->enc_prev[1] = 0;
-    wd->wall_y = -cfg.wall_target_mm;
+    wd->walls.left_y = 1.0e6f;
+    wd->walls.right_y = -cfg.wall_target_mm;
+    wd->walls.ahead_x = wd->walls.jog_x = wd->walls.jog_dy = 0.0f;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         wd->offset_mv[i] = 0.0f;
+        wd->walls.part_mm[i] = 0.0f;
     }
     wd->offset_mv[FFR_IR_RF] = front_mv;
     wd->offset_mv[FFR_IR_RR] = rear_mv;

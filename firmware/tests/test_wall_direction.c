@@ -5,47 +5,10 @@
  * odometry's frame is the world turned by its heading error.
  */
 #include "ffr_internal.h"
+#include "rig.h"
 #include "unit.h"
 
-typedef struct {
-    float left_y, right_y;   /* hallway walls along x: y = left_y (> 0), y = right_y (< 0) */
-    float ahead_x;           /* a wall across at x = ahead_x (0: none)                     */
-    float jog_x, jog_dy;     /* the right wall steps out by jog_dy beyond x = jog_x (0: none) */
-    float part_mm[FFR_IR_COUNT]; /* each part reads this much long (mm along its beam)      */
-} walls_t;
-
-/* Distance along ranger i's beam to the nearest wall, from the true pose. */
-static float beam(const ffr_config_t *cfg, const walls_t *w, int i, float x, float y, float th)
-{
-    float c = ffr_cosf(th), s = ffr_sinf(th);
-    float mx = x + c * cfg->ir_x_mm[i] - s * cfg->ir_y_mm[i];
-    float my = y + s * cfg->ir_x_mm[i] + c * cfg->ir_y_mm[i];
-    float ux = ffr_cosf(th + cfg->ir_angle_deg[i] * FFR_DEG);
-    float uy = ffr_sinf(th + cfg->ir_angle_deg[i] * FFR_DEG);
-    float best = FFR_IR_NONE(cfg);
-    float d;
-    if (uy > 1e-3f) {
-        d = (w->left_y - my) / uy;
-        best = d < best ? d : best;
-    }
-    if (uy < -1e-3f) {
-        d = (w->right_y - my) / uy;
-        if (w->jog_x != 0.0f && mx + d * ux > w->jog_x) {
-            d = (w->right_y + w->jog_dy - my) / uy;
-        }
-        best = d < best ? d : best;
-    }
-    if (w->ahead_x != 0.0f && ux > 1e-3f) {
-        d = (w->ahead_x - mx) / ux;
-        best = d < best ? d : best;
-    }
-    if (best > cfg->ir_max_mm) {
-        return FFR_IR_NONE(cfg);
-    }
-    return best + w->part_mm[i];
-}
-
-static int drive_worst(ffr_wall_cal_t *c, const ffr_config_t *cfg, const walls_t *w, float *x, float th, float err,
+static int drive_worst(ffr_wall_cal_t *c, const ffr_config_t *cfg, const rig_walls_t *w, float *x, float th, float err,
                        float turn_per_mm, float mm, float *dir_out, float *worst)
 {
     ffr_odometry_t o;
@@ -55,7 +18,7 @@ static int drive_worst(ffr_wall_cal_t *c, const ffr_config_t *cfg, const walls_t
     ffr_odometry_reset(&o);
     while (s < mm) {
         for (i = 0; i < FFR_IR_COUNT; ++i) {
-            ir[i] = beam(cfg, w, i, *x, y, th);
+            ir[i] = rig_beam_mm(cfg, w, i, *x, y, th);
         }
         /* odometry's frame: the world turned by err */
         o.x_mm = ffr_cosf(err) * *x - ffr_sinf(err) * y;
@@ -80,7 +43,7 @@ static int drive_worst(ffr_wall_cal_t *c, const ffr_config_t *cfg, const walls_t
 /* Drive `mm` from (x, 0) at true heading `th` (turning turn_per_mm), with
  * odometry's heading `err` off; returns how many windows closed, the last
  * direction seen and how far the worst was from the walls' (err). */
-static int drive(ffr_wall_cal_t *c, const ffr_config_t *cfg, const walls_t *w, float *x, float th, float err,
+static int drive(ffr_wall_cal_t *c, const ffr_config_t *cfg, const rig_walls_t *w, float *x, float th, float err,
                  float turn_per_mm, float mm, float *dir_out)
 {
     float worst = 0.0f;
@@ -91,7 +54,7 @@ static void the_walls_direction_in_odometrys_frame(void)
 {
     ffr_config_t cfg;
     ffr_wall_cal_t c;
-    walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, -30.0f, 30.0f, 30.0f, -30.0f}};
+    rig_walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, -30.0f, 30.0f, 30.0f, -30.0f}};
     float x = 0.0f, dir = 99.0f;
     ffr_config_default(&cfg);
     ffr_wall_cal_reset(&c);
@@ -106,7 +69,7 @@ static void the_walls_direction_in_odometrys_frame(void)
     CHECK_NEAR(dir / FFR_DEG, -4.0, 0.3);
     /* one wall, one ranger (the other looks into an opening): enough */
     {
-        walls_t one = {2000.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 25.0f, 0.0f, 0.0f}};
+        rig_walls_t one = {2000.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 25.0f, 0.0f, 0.0f}};
         ffr_wall_dir_reset(&c);
         x = 0.0f;
         cfg.ir_angle_deg[FFR_IR_RR] = 180.0f; /* blind the rear right ranger */
@@ -120,7 +83,7 @@ static void not_a_straight_wall_along_the_travel(void)
 {
     ffr_config_t cfg;
     ffr_wall_cal_t c;
-    walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0}};
+    rig_walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0}};
     float x = 0.0f, dir = 0.0f;
     ffr_config_default(&cfg);
     ffr_wall_cal_reset(&c);
@@ -140,7 +103,7 @@ static void not_a_straight_wall_along_the_travel(void)
     /* the right wall steps out 30 mm (a door jamb, a wall's thickness): the
      * windows across the step are not a line, the others are right */
     {
-        walls_t jog = {5000.0f, -230.0f, 0.0f, 600.0f, -30.0f, {0}};
+        rig_walls_t jog = {5000.0f, -230.0f, 0.0f, 600.0f, -30.0f, {0}};
         float worst = 0.0f;
         ffr_wall_dir_reset(&c);
         x = 0.0f;
@@ -150,7 +113,7 @@ static void not_a_straight_wall_along_the_travel(void)
     /* hits that only move along the beam (driving straight at a wall seen by
      * one ranger) are no line along the travel */
     {
-        walls_t across = {5000.0f, -5000.0f, 900.0f, 0.0f, 0.0f, {0}};
+        rig_walls_t across = {5000.0f, -5000.0f, 900.0f, 0.0f, 0.0f, {0}};
         ffr_wall_dir_reset(&c);
         x = 0.0f;
         dir = 99.0f;
