@@ -70,7 +70,7 @@ static void report_profile(const ffr_board_link_t *l)
 {
     char line[96];
     char *p = line;
-    const char *k1 = "ffr-profile steps=", *k2 = " sum=", *k3 = " max=";
+    const char *k1 = "ffr-profile steps=", *k2 = " sum=", *k3 = " max=", *k4 = " overruns=";
     while (*k1 != '\0') {
         *p++ = *k1++;
     }
@@ -83,6 +83,10 @@ static void report_profile(const ffr_board_link_t *l)
         *p++ = *k3++;
     }
     p = put_u32(p, l->prof_max);
+    while (*k4 != '\0') {
+        *p++ = *k4++;
+    }
+    p = put_u32(p, uart_rx_overruns());
     *p++ = '\n';
     *p = '\0';
     uart1_puts(line);

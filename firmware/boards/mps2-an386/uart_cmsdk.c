@@ -1,7 +1,18 @@
 /*
  * ARM CMSDK APB UARTs (UART0 at 0x40004000: the link; UART1 at 0x40005000:
- * the profile log). Receive is interrupt driven into a ring buffer, so the
- * main loop can sleep (wfi) between frames; transmit is polled.
+ * the profile log). Transmit is polled. Receive is interrupt driven into a
+ * ring buffer so the main loop can sleep (wfi) between frames.
+ *
+ * The ring has exactly one producer and one consumer, by construction:
+ *   - only the receive interrupt reads the data register and advances g_head;
+ *   - only the main loop (uart_getc) advances g_tail.
+ * The main loop never touches the receive registers. When the ring is full
+ * the interrupt switches itself off and leaves the byte in the UART's
+ * holding register: the UART stops accepting (QEMU holds the rest in its
+ * chardev; a real line would overrun, which is counted, never hidden). The
+ * main loop switches it back on, with interrupts masked, once it has made
+ * room. CTRL is written by both, but never at the same time: the interrupt
+ * writes it only while it is enabled, the main loop only while it is masked.
  */
 #include "board.h"
 
@@ -9,46 +20,58 @@
 #define UART1_BASE 0x40005000u
 #define REG(base, off) (*(volatile uint32_t *)((base) + (off)))
 #define UART_DATA 0x00u
-#define UART_STATE 0x04u
+#define UART_STATE 0x04u /* status on read; write 1 to clear the overrun bits */
 #define UART_CTRL 0x08u
 #define UART_INT 0x0Cu /* status on read, clear on write */
 #define UART_BAUDDIV 0x10u
 #define STATE_TX_FULL 0x1u
 #define STATE_RX_FULL 0x2u
+#define STATE_RX_OVERRUN 0x8u
 #define CTRL_TX_EN 0x1u
 #define CTRL_RX_EN 0x2u
 #define CTRL_RX_IRQ 0x8u
+#define CTRL_RUN (CTRL_TX_EN | CTRL_RX_EN | CTRL_RX_IRQ)
+#define CTRL_PAUSED (CTRL_TX_EN | CTRL_RX_EN)
 #define INT_RX 0x2u
 #define NVIC_ISER0 (*(volatile uint32_t *)0xE000E100u)
 #define UART0_RX_IRQ 0u /* QEMU mps2-an385/6: UART n receive is IRQ 2n */
 
-#define RING 1024u /* power of two */
+#define RING 1024u /* power of two; a frame is at most FFR_FRAME_MAX bytes */
 
-/* filled by the interrupt, emptied by the main loop: single producer, single consumer */
 static volatile uint8_t g_ring[RING];
-static volatile uint32_t g_head, g_tail;
+static volatile uint32_t g_head;    /* written by the interrupt only */
+static volatile uint32_t g_tail;    /* written by the main loop only */
+static volatile uint32_t g_paused;  /* 1: the interrupt found the ring full and switched itself off */
+static volatile uint32_t g_overruns; /* bytes the UART itself lost (none under QEMU's flow control) */
 
-static void drain(void)
-{
-    while (REG(UART0_BASE, UART_STATE) & STATE_RX_FULL) {
-        uint8_t c = (uint8_t)(REG(UART0_BASE, UART_DATA) & 0xFFu);
-        if (g_head - g_tail < RING) {
-            g_ring[g_head & (RING - 1u)] = c;
-            g_head++;
-        }
-    }
-}
+#define barrier() __asm__ volatile("" ::: "memory")
 
 void uart0_rx_handler(void)
 {
     REG(UART0_BASE, UART_INT) = INT_RX;
-    drain();
+    if (REG(UART0_BASE, UART_STATE) & STATE_RX_OVERRUN) {
+        REG(UART0_BASE, UART_STATE) = STATE_RX_OVERRUN;
+        g_overruns++;
+    }
+    while (REG(UART0_BASE, UART_STATE) & STATE_RX_FULL) {
+        uint32_t head = g_head;
+        if (head - g_tail >= RING) {
+            /* no room: leave the byte where it is, stop being called for it */
+            g_paused = 1u;
+            REG(UART0_BASE, UART_CTRL) = CTRL_PAUSED;
+            return;
+        }
+        g_ring[head & (RING - 1u)] = (uint8_t)(REG(UART0_BASE, UART_DATA) & 0xFFu);
+        barrier(); /* the byte is in the ring before the consumer can see it */
+        g_head = head + 1u;
+    }
 }
 
 void uart_init(void)
 {
+    g_head = g_tail = g_paused = g_overruns = 0u;
     REG(UART0_BASE, UART_BAUDDIV) = BOARD_CPU_HZ / 115200u;
-    REG(UART0_BASE, UART_CTRL) = CTRL_TX_EN | CTRL_RX_EN | CTRL_RX_IRQ;
+    REG(UART0_BASE, UART_CTRL) = CTRL_RUN;
     REG(UART1_BASE, UART_BAUDDIV) = BOARD_CPU_HZ / 115200u;
     REG(UART1_BASE, UART_CTRL) = CTRL_TX_EN;
     NVIC_ISER0 = 1u << UART0_RX_IRQ;
@@ -87,16 +110,24 @@ void uart1_puts(const char *s)
 
 int uart_getc(void)
 {
+    uint32_t tail = g_tail;
     int c;
-    if (g_tail == g_head) {
-        drain(); /* also works with the interrupt masked */
-    }
-    if (g_tail == g_head) {
+    if (tail == g_head) {
         return -1;
     }
-    c = g_ring[g_tail & (RING - 1u)];
-    g_tail++;
+    barrier(); /* read the byte only after seeing the head that covers it */
+    c = g_ring[tail & (RING - 1u)];
+    g_tail = tail + 1u;
+    if (g_paused != 0u) {
+        /* there is room again: let the interrupt take the waiting byte */
+        __asm__ volatile("cpsid i" ::: "memory");
+        g_paused = 0u;
+        REG(UART0_BASE, UART_CTRL) = CTRL_RUN;
+        __asm__ volatile("cpsie i" ::: "memory");
+    }
     return c;
 }
 
 int uart_rx_empty(void) { return g_tail == g_head; }
+
+uint32_t uart_rx_overruns(void) { return g_overruns; }
