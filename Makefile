@@ -3,6 +3,7 @@
 #   make test   set up, build, run every test
 #   make bench  real-time factor and per-tick costs, sweep throughput (missions/s)
 #   make test-thorough  the property tests with the thorough hypothesis profile
+#   make stress  the wire and PIL missions again with every core busy: same traces, silent links
 #   make envelope  success rate per kind and level of sensor noise (docs/robustness.md)
 #   make firmware  host library + Cortex-M4 build (flash/RAM printed)
 
@@ -32,7 +33,7 @@ HOST_CFLAGS := $(CSTD) -O2 -fPIC
 ARM_CFLAGS  := $(CSTD) -Os -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 \
                -ffunction-sections -fdata-sections
 
-.PHONY: all setup run test test-thorough envelope bench firmware firmware-host firmware-arm firmware-boards firmware-test selftest lint clean wire-test fuzz
+.PHONY: all setup run test stress test-thorough envelope bench firmware firmware-host firmware-arm firmware-boards firmware-test selftest lint clean wire-test fuzz
 
 all: firmware-host
 
@@ -140,6 +141,16 @@ test: setup firmware-host $(BUILD)/host/ffr_unit_tests $(BUILD)/host/ffr_wire_te
 	$(BUILD)/host/ffr_unit_tests
 	$(BUILD)/host/ffr_wire_tests $(WIRE_VECTORS)
 	$(VENV)/bin/pytest -q
+
+# The fresh machine is busy and slow: the missions over every link again, with one busy
+# process per core competing for the CPU. Traces stay bit-identical and every clean link
+# silent (zero retries, CRC errors, board errors, stale answers: asserted by the tests).
+STRESS_TESTS := tests/bridge/test_missions_wire.py tests/pil/test_qemu_board.py::test_mission_on_the_emulated_board_equals_the_host_build
+stress: setup firmware-host firmware-boards
+	@pids=""; for i in $$(seq $$(nproc)); do yes > /dev/null & pids="$$pids $$!"; done; \
+	trap 'kill $$pids 2>/dev/null' EXIT INT TERM; \
+	echo "stress: $$(nproc) busy processes ($$pids) while the wire and PIL missions run"; \
+	$(VENV)/bin/pytest -q -p no:cacheprovider $(STRESS_TESTS)
 
 test-thorough: setup firmware-host
 	$(VENV)/bin/pytest -q tests/property --ffr-profile thorough

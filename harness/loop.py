@@ -1,6 +1,6 @@
 """The lockstep loop: sensors -> firmware -> plant, one firmware tick at a time.
 
-One tick (DESIGN.md): the sensors sample the plant into hardware units, the
+One tick (docs/architecture.md): the sensors sample the plant into hardware units, the
 link steps the firmware once with them, the firmware's PWM and fan command are
 applied to the plant, which integrates over the tick. The firmware never runs
 ahead of the plant; each inputs frame carries the tick time and a sequence
@@ -139,6 +139,7 @@ class Mission:
         events = EventRunner(scn.events, rng) if scn.events else None
         cfg = build_config(scn.robot, scn.firmware, scn.source)
         link = self.link
+        counters0 = link.link_counters()
         link.reset(cfg)
 
         inp, out = new_inputs(), new_outputs()
@@ -239,6 +240,7 @@ class Mission:
             path_length_m=plant.path_length, seed=scn.seed, rooms_searched=rooms_searched,
             detail=detail, scenario=scn.name, link=link.url, sim_time_s=t,
             final_pose=(plant.x, plant.y, plant.theta),
+            link_counters=(link.link_counters() - counters0).as_dict(),
         )
         result.score = contest_score(self.rules, outcome, ext, rooms_searched, plant.contacts)
         n = k if record else 0

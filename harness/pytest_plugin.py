@@ -116,11 +116,27 @@ def _ffr_default_link(request: pytest.FixtureRequest, monkeypatch: pytest.Monkey
         import harness.loop
         from harness.links import open_link
 
+        opened: list[Any] = []
+
         def chosen(u: str):  # noqa: ANN202 - open_link's own signature
-            return open_link(url if u == "ctypes:" else u)
+            link = open_link(url if u == "ctypes:" else u)
+            opened.append((link, link.link_counters()))
+            return link
 
         monkeypatch.setattr(harness.loop, "open_link", chosen)
+        yield
+        for link, before in opened:
+            check_clean_link(link, link.link_counters() - before)
+        return
     yield
+
+
+def check_clean_link(link: Any, counters: Any) -> None:
+    """A clean link is silent: without injected faults, any retry, CRC error, board error report
+    or stale answer fails the test (recovery must never hide a defect)."""
+    if not link.faults_injected and counters.errors:
+        pytest.fail(f"{link.url}: a link without injected faults is not silent: {counters.errors} "
+                    f"({counters.as_dict()})", pytrace=False)
 
 
 @pytest.fixture(scope="session")
@@ -208,13 +224,17 @@ def ffr_mission(request: pytest.FixtureRequest, ffr_link: Any, record_property: 
             else:
                 scn.robot = override(scn.robot, k, v, "--ffr-set")
                 scn.robot_overrides[k] = v
+        before = ffr_link.link_counters()
         res, trace = run_mission(scn, ffr_link, record=record)
+        check_clean_link(ffr_link, ffr_link.link_counters() - before)
         count += 1
         prefix = "" if count == 1 else f"{count}."
         if count <= MAX_RECORDED:  # a property test runs hundreds: the report keeps the first ones
             for key, value in res.to_json().items():
                 if key in ("final_pose", "candle"):
                     value = " ".join(str(v) for v in value)
+                elif key == "link_counters":
+                    value = " ".join(f"{k}={v}" for k, v in value.items())
                 record_property(f"{prefix}{key}", value)
             cmd = replay_command(scn, ffr_link.url, None)  # a file only if the test fails
             if cmd:

@@ -54,6 +54,8 @@ class MissionResult:
     link: str = "ctypes:"
     sim_time_s: float = 0.0
     final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    # what crossed the link during this mission (LinkCounters.as_dict(); docs/protocol.md)
+    link_counters: dict[str, int] = field(default_factory=dict)
     extra: dict[str, Any] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
@@ -75,6 +77,7 @@ class MissionResult:
             "detail": self.detail,
             "scenario": self.scenario,
             "link": self.link,
+            "link_counters": dict(self.link_counters),
             "sim_time_s": r(self.sim_time_s),
             "final_pose": [round(self.final_pose[0], 4), round(self.final_pose[1], 4),
                            round(math.degrees(self.final_pose[2]), 2)],

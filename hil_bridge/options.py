@@ -15,9 +15,14 @@ from hil_bridge.faults import FaultSpec
 
 @dataclass
 class WireOptions:
-    timeout_s: float = 0.02          # first wait for an answer; after each silence twice as long
+    # first wait for an answer, after each silence twice as long. 0.25 s, like TCP's 200 ms floor
+    # on its retransmission timeout: a busy machine stalls a process for tens of ms, and a retry
+    # that a stall caused would be an error on a clean link. A lossy line can ask for less.
+    timeout_s: float = 0.25
     retries: int = 10                # send an inputs frame again at most this often ...
-    step_budget_s: float = 1.5       # ... and within this time, then give up
+    # ... and within this time: a board alive but answering nothing usable for 2 s is broken
+    # (one line, exit 2); a board whose process or line has gone is known at once, within 1 s
+    step_budget_s: float = 2.0
     handshake_timeout_s: float = 2.0  # wait for INFO, and for READY, at most this long in all
     watchdog_ms: int = 0             # asked of the board in HELLO (0: the board's own)
     baud: int = 115200               # serial: real ports only

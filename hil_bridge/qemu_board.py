@@ -43,6 +43,7 @@ class StepProfile:
     steps: int
     mean_insn: float
     max_insn: int
+    rx_overruns: int  # bytes the board's UART lost before its driver read them: 0 on a sound board
 
 
 def _die_with_parent() -> None:  # runs in the child between fork and exec
@@ -86,11 +87,11 @@ class QemuBoard:
             text = self.profile_path.read_text(errors="replace")
         except OSError:
             return None
-        found = re.findall(r"ffr-profile steps=(\d+) sum=(\d+) max=(\d+)", text)
+        found = re.findall(r"ffr-profile steps=(\d+) sum=(\d+) max=(\d+) overruns=(\d+)", text)
         if not found:
             return None
-        steps, total, worst = (int(v) for v in found[-1])
-        return StepProfile(steps, total * INSN_PER_COUNT / steps, worst * INSN_PER_COUNT)
+        steps, total, worst, overruns = (int(v) for v in found[-1])
+        return StepProfile(steps, total * INSN_PER_COUNT / steps, worst * INSN_PER_COUNT, overruns)
 
     def stop(self) -> None:
         stop_process(self.proc, (self.proc.terminate, self.proc.kill), wait_s=2.0)
@@ -140,7 +141,7 @@ def open_qemu(url: str) -> QemuLink:
     if "step_budget_s" not in frag:
         opts.step_budget_s = 5.0
     if "timeout_s" not in frag.replace("handshake_timeout_s", ""):
-        opts.timeout_s = 0.1
+        opts.timeout_s = 1.0  # first use of a code path is translated: a long pause, not a loss
     elf = MACHINES.get(machine)
     if elf is None:
         raise LinkError(f"--link = {url!r}: unknown emulated board '{machine}', known: {sorted(MACHINES)}")

@@ -22,6 +22,9 @@ from hil_bridge.options import WireOptions, parse_url
 from hil_bridge.wire_link import WireLink
 
 _POLL_S = 0.002  # the port's read timeout: how often a wait looks at its deadline
+# pyserial's socket:// write raises a timeout whenever the call as a whole took longer, even
+# when every byte went out: a process stalled by a busy machine is not a stuck line
+_WRITE_TIMEOUT_S = 5.0
 
 
 class SerialLink(WireLink):
@@ -35,7 +38,8 @@ class SerialLink(WireLink):
         # the way back draws from its own stream, so each direction's pattern is fixed by the seed
         self.faults_rx: FaultInjector[bytes] = FaultInjector(replace(opts.faults, seed=opts.faults.seed + 1), flip_bit)
         try:
-            self.ser = serial.serial_for_url(port_url, baudrate=opts.baud, timeout=_POLL_S, write_timeout=1.0)
+            self.ser = serial.serial_for_url(port_url, baudrate=opts.baud, timeout=_POLL_S,
+                                              write_timeout=_WRITE_TIMEOUT_S)
         except (serial.SerialException, ValueError, OSError) as exc:
             raise LinkError(f"serial:{port_url}: cannot open: {exc}") from None
         sock = getattr(self.ser, "_socket", None)  # socket://: one frame, one segment, no Nagle delay

@@ -1,6 +1,6 @@
 """The shared wire test vectors: written by this (Python) codec, checked by
 the C codec's tests (``firmware/tests/wire/test_vectors.c``) and, for
-staleness, by pytest (``tests/bridge/test_vectors.py``).
+staleness, by pytest (``tests/bridge/test_codec.py``).
 
     python -m hil_bridge.vectors > tests/bridge/vectors/wire_vectors.txt
 

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import time
 from abc import abstractmethod
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -28,25 +27,10 @@ from hil_bridge.errors import DecodeError, ErrCode, Status
 from hil_bridge.options import WireOptions
 
 FW_VERSION_MAJOR = 1  # the firmware API this harness speaks (FFR_VERSION_MAJOR)
-_HANDSHAKE_TRY_S = 0.05  # first wait for INFO / READY (a config is 650 bytes: 60 ms at 115200 baud)
+_HANDSHAKE_TRY_S = 0.25  # first wait for INFO / READY (a config is 650 bytes: 60 ms at 115200 baud)
 # A RESET is 82 classic CAN frames: where 2% of frames are lost, one in five gets through whole,
 # so HELLO and RESET may be sent many times; handshake_timeout_s still bounds the wait.
 _HANDSHAKE_RETRIES = 50
-
-
-@dataclass
-class LinkCounters:
-    sent: int = 0          # messages sent (retries included)
-    received: int = 0      # messages received and decoded
-    crc_errors: int = 0    # frames that failed their CRC or framing, either side
-    retries: int = 0       # messages sent again
-    stale: int = 0         # late or repeated answers, ignored
-    board_errors: int = 0  # error reports from the board
-    watchdog: int = 0      # the board's watchdog tripped
-
-    def __str__(self) -> str:
-        return (f"sent {self.sent}, received {self.received}, CRC errors {self.crc_errors}, "
-                f"retries {self.retries}")
 
 
 # Board error reports that mean "send it again" rather than "give up".
@@ -61,13 +45,20 @@ class WireLink(FirmwareLink):
     def __init__(self, opts: WireOptions) -> None:
         super().__init__()
         self.opts = opts
-        self.counters = LinkCounters()
         self.info: np.ndarray | None = None
         self._in_msg = bytearray(1 + INPUTS_DTYPE.itemsize)
         self._in_msg[0] = int(MsgType.INPUTS)
         self._raw_inputs = codec.RAW_OK[MsgType.INPUTS]
         self._t_ms = 0
         self._tick: int | None = None  # None: handshake or reset
+
+    @property
+    def faults_injected(self) -> bool:
+        return self.opts.faults.active
+
+    @property
+    def _handshake_try_s(self) -> float:
+        return min(_HANDSHAKE_TRY_S, self.opts.timeout_s)  # a lossy line asks for short tries
 
     # ---- transport ------------------------------------------------------------------------------------------
     @abstractmethod
@@ -103,16 +94,19 @@ class WireLink(FirmwareLink):
     def _transact(self, msg: bytes, want: MsgType, seq: int | None, timeout_s: float, retries: int,
                   budget_s: float) -> bytes:
         """Send msg until an answer of type `want` (for `seq`) comes: at most retries + 1 times,
-        within budget_s in all."""
+        within budget_s in all.
+
+        Silence: the next try waits twice as long (a lost frame costs one timeout; a host or board
+        stalled by a busy machine still gets its time). A garbled answer or an error report: send
+        again after a backoff that doubles from 1/16 of the timeout (listening meanwhile, since
+        the right answer may still come), never a burst of immediate resends into a board that is
+        already struggling."""
         t0 = time.monotonic()
-        tries = silent = 0
+        tries = silent = garbled = 0
         while True:
             self._send_msg(msg)
             self.counters.sent += 1
             tries += 1
-            # a try that met silence waits twice as long next time (a lost frame costs one short
-            # timeout; a host or board stalled by a busy machine still gets its time); a garbled
-            # answer or an error report is answered by sending again at once
             deadline = min(time.monotonic() + timeout_s * (1 << min(silent, 4)), t0 + budget_s)
             heard = False
             while True:
@@ -125,23 +119,28 @@ class WireLink(FirmwareLink):
                     if exc.status in (Status.CRC, Status.COBS, Status.SHORT, Status.LONG, Status.SEGMENT,
                                       Status.LENGTH):
                         self.counters.crc_errors += 1
+                    reply = None
                     heard = True
-                    break
-                if reply is None:
-                    break
-                self.counters.received += 1
-                t = reply[0]
-                if t == want:
-                    if seq is None or int.from_bytes(reply[1:5], "little") == seq:
-                        return reply
-                    self.counters.stale += 1  # an answer to an earlier try or tick
-                    continue
-                if t == MsgType.ERROR:
-                    if self._board_error(reply, seq):
-                        heard = True
+                else:
+                    if reply is None:
                         break
-                    continue
-                self.counters.stale += 1
+                    self.counters.received += 1
+                    t = reply[0]
+                    if t == want:
+                        if seq is None or int.from_bytes(reply[1:5], "little") == seq:
+                            return reply
+                        self.counters.stale += 1  # an answer to an earlier try or tick
+                        continue
+                    if t != MsgType.ERROR:
+                        self.counters.stale += 1
+                        continue
+                    if not self._board_error(reply, seq):
+                        continue
+                    heard = True
+                # garbled: resend after the backoff, still listening until then
+                backoff = timeout_s / 16 * (1 << min(garbled, 4))
+                garbled += 1
+                deadline = min(deadline, time.monotonic() + backoff)
             silent += 0 if heard else 1
             gone = self._gone()
             if gone or tries > retries or time.monotonic() >= t0 + budget_s:
@@ -169,7 +168,7 @@ class WireLink(FirmwareLink):
     def handshake(self) -> np.ndarray:
         hello = codec.encode_msg(MsgType.HELLO, codec.record(MsgType.HELLO, proto=codec.PROTO_VERSION,
                                                              watchdog_ms=self.opts.watchdog_ms))
-        reply = self._transact(hello, MsgType.INFO, None, _HANDSHAKE_TRY_S, _HANDSHAKE_RETRIES,
+        reply = self._transact(hello, MsgType.INFO, None, self._handshake_try_s, _HANDSHAKE_RETRIES,
                                self.opts.handshake_timeout_s)
         _, info = codec.decode_msg(reply)
         ver = int(info["fw_version"])
@@ -193,7 +192,7 @@ class WireLink(FirmwareLink):
         if self.info is None:
             self.handshake()
         msg = codec.encode_msg(MsgType.RESET, config)
-        reply = self._transact(msg, MsgType.READY, None, _HANDSHAKE_TRY_S, _HANDSHAKE_RETRIES,
+        reply = self._transact(msg, MsgType.READY, None, self._handshake_try_s, _HANDSHAKE_RETRIES,
                                self.opts.handshake_timeout_s)
         _, ready = codec.decode_msg(reply)
         if int(ready["config_crc"]) != crc16(msg[1:]):

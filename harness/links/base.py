@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from collections.abc import Callable
+from dataclasses import asdict, dataclass, fields
 
 import numpy as np
 
@@ -20,6 +21,40 @@ class LinkError(RuntimeError):
     """The firmware side failed, went silent or answered out of turn."""
 
 
+@dataclass
+class LinkCounters:
+    """What crossed a link. On a link without injected faults every error counter stays 0:
+    a retry, a CRC error, an error report or a stale answer there is a defect, never noise."""
+
+    sent: int = 0          # messages sent (retries included)
+    received: int = 0      # messages received and decoded
+    crc_errors: int = 0    # frames that failed their CRC or framing, either side
+    retries: int = 0       # messages sent again
+    stale: int = 0         # late or repeated answers, ignored
+    board_errors: int = 0  # error reports from the board
+    watchdog: int = 0      # the board's watchdog tripped
+
+    ERRORS = ("crc_errors", "retries", "stale", "board_errors", "watchdog")
+
+    def __str__(self) -> str:
+        return (f"sent {self.sent}, received {self.received}, CRC errors {self.crc_errors}, "
+                f"retries {self.retries}")
+
+    def __sub__(self, other: LinkCounters) -> LinkCounters:
+        return LinkCounters(**{f.name: getattr(self, f.name) - getattr(other, f.name) for f in fields(self)})
+
+    def copy(self) -> LinkCounters:
+        return LinkCounters(**asdict(self))
+
+    def as_dict(self) -> dict[str, int]:
+        return asdict(self)
+
+    @property
+    def errors(self) -> dict[str, int]:
+        """The error counters that are not 0 (empty on a clean link)."""
+        return {k: getattr(self, k) for k in self.ERRORS if getattr(self, k)}
+
+
 class FirmwareLink(ABC):
     """One firmware instance, stepped in lockstep."""
 
@@ -27,6 +62,16 @@ class FirmwareLink(ABC):
 
     def __init__(self) -> None:
         self.steps = 0
+        self.counters = LinkCounters()
+
+    @property
+    def faults_injected(self) -> bool:
+        """True when the link was asked to damage frames (then error counters are expected)."""
+        return False
+
+    def link_counters(self) -> LinkCounters:
+        """The counters so far (a snapshot)."""
+        return self.counters.copy()
 
     def reset(self, config: np.ndarray) -> None:
         """(Re)start the firmware with a configuration (a CONFIG_DTYPE record)."""

@@ -16,7 +16,7 @@ from harness.firmware_abi import (
     check_layout,
     read_layout,
 )
-from harness.links.base import FirmwareLink, LinkError, register_link
+from harness.links.base import FirmwareLink, LinkCounters, LinkError, register_link
 
 REPO = Path(__file__).resolve().parents[2]
 DEFAULT_LIB = REPO / "build" / "host" / "libffr.so"
@@ -83,6 +83,10 @@ class CtypesLink(FirmwareLink):
 
     def _step_impl(self, inputs: np.ndarray, outputs: np.ndarray) -> None:
         self._step_fn(self._state_ptr, inputs.ctypes.data, outputs.ctypes.data)
+
+    def link_counters(self) -> LinkCounters:
+        # a function call neither loses nor damages anything: one message each way per step
+        return LinkCounters(sent=self.steps, received=self.steps)
 
     def bind(self, inputs: np.ndarray, outputs: np.ndarray) -> None:
         """Fix the I/O buffers for ``step_bound`` (the loop's fast path)."""

@@ -32,6 +32,10 @@ def test_ffr_run_over_the_wire_gives_the_in_process_result(url: str) -> None:
     a, b = json.loads(wire.stdout), json.loads(local.stdout)
     assert a["outcome"] == "home" and a.pop("link", url) == url
     b.pop("link", None)
+    # every message answered once, nothing lost or repeated; the wire adds HELLO and RESET
+    ca, cb = a.pop("link_counters"), b.pop("link_counters")
+    assert ca == cb | {"sent": cb["sent"] + 2, "received": cb["received"] + 2}
+    assert ca["crc_errors"] == ca["retries"] == ca["stale"] == ca["board_errors"] == 0
     assert a == b
 
 

@@ -147,14 +147,25 @@ def test_a_board_that_goes_silent_mid_run_is_named_with_the_tick(fake) -> None:
 
 def test_a_board_answering_garbage_counts_crc_errors(fake) -> None:
     good = _info()
-    board = fake(lambda m: good[:3] + bytes([good[3] ^ 0x40]) + good[4:])  # one bit off, every time
+    heard: list[float] = []
+
+    def garble(m: bytes) -> bytes:
+        heard.append(time.monotonic())
+        return good[:3] + bytes([good[3] ^ 0x40]) + good[4:]  # one bit off, every time
+
+    board = fake(garble)
     with pytest.raises(LinkError) as exc, \
-            open_link(f"serial:socket://127.0.0.1:{board.port}#handshake_timeout_s=3") as link:
+            open_link(f"serial:socket://127.0.0.1:{board.port}#handshake_timeout_s=3&timeout_s=0.16") as link:
         link.reset(_config())
-    # a garbled answer is asked again at once: many tries within the budget, each one a CRC error
     assert "board garbled during the handshake" in str(exc.value)
     m = re.search(r"no INFO after (\d+) tries .*CRC errors (\d+), retries (\d+)", str(exc.value))
-    assert m and int(m.group(1)) == int(m.group(2)) == int(m.group(3)) + 1 == 51
+    # every try met a CRC error, and each was sent again
+    assert m and int(m.group(1)) == int(m.group(2)) == int(m.group(3)) + 1
+    # ... after a backoff from 10 ms (1/16 of timeout_s) doubling to 160 ms, not in a burst:
+    # 10 + 20 + 40 + 80 ms, then one every 160 ms until the 3 s are spent
+    assert 18 <= int(m.group(1)) <= 24
+    gaps = np.diff(heard)
+    assert gaps[0] >= 0.009 and gaps[3] >= 0.079 and min(gaps[4:]) >= 0.159
 
 
 def test_a_board_error_report_that_retrying_cannot_fix_ends_the_run(fake) -> None:

@@ -7,6 +7,7 @@ mps2-an386 board (newlib, run on QEMU), the two lines must be equal.
 
 from __future__ import annotations
 
+import os
 import re
 import shutil
 import subprocess
@@ -17,7 +18,8 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 
 
-@pytest.mark.skipif(shutil.which("arm-none-eabi-gcc") is None or shutil.which("qemu-system-arm") is None,
+@pytest.mark.skipif((shutil.which("arm-none-eabi-gcc") is None or shutil.which("qemu-system-arm") is None)
+                    and not os.environ.get("CI"),  # CI installs both: missing there is a failure
                     reason="needs arm-none-eabi-gcc and qemu-system-arm (CI installs both)")
 def test_host_and_cortex_m4_checksums_equal() -> None:
     res = subprocess.run(["make", "-s", "selftest"], cwd=REPO, capture_output=True, text=True, timeout=300)
@@ -31,3 +33,4 @@ def test_host_and_cortex_m4_checksums_equal() -> None:
     assert prof, res.stdout
     mean, worst = int(prof.group(1)), int(prof.group(2))
     assert 0 < mean <= worst < 20000  # the stated budget (Makefile, bench)
+    assert worst <= 5000  # the firmware's own bound on its worst tick (docs/pil.md)

@@ -23,9 +23,12 @@ from harness.scenario import make_scenario
 
 REPO = Path(__file__).resolve().parents[2]
 BUDGET_INSN = 20_000  # stated in the Makefile's bench target and docs/pil.md
+WORST_INSN = 5_000  # the firmware's own bound on its worst tick (docs/pil.md)
 
+# under CI the tools are installed by .ci/run: a missing one fails there instead of skipping
 pytestmark = pytest.mark.skipif(
-    shutil.which("qemu-system-arm") is None or shutil.which("arm-none-eabi-gcc") is None,
+    (shutil.which("qemu-system-arm") is None or shutil.which("arm-none-eabi-gcc") is None)
+    and not os.environ.get("CI"),
     reason="needs qemu-system-arm and arm-none-eabi-gcc (CI installs both)")
 
 
@@ -51,9 +54,14 @@ def test_mission_on_the_emulated_board_equals_the_host_build(room: int) -> None:
     assert rep.identical, rep.detail
     assert rep.results[1].outcome == "home"
     assert rep.ticks_target == rep.ticks_reference > 3000
+    # a clean link is silent: every message answered once, nothing garbled, repeated or late
+    c = rep.results[1].link_counters
+    assert c["sent"] == c["received"] > rep.ticks_target
+    assert c["crc_errors"] == c["retries"] == c["stale"] == c["board_errors"] == c["watchdog"] == 0, c
     prof = target.profile  # type: ignore[attr-defined]
     assert prof is not None and prof.steps >= 3000
-    assert 200 < prof.mean_insn <= prof.max_insn < BUDGET_INSN
+    assert prof.rx_overruns == 0
+    assert 200 < prof.mean_insn <= prof.max_insn <= WORST_INSN < BUDGET_INSN
     assert _qemu_pids() == before  # QEMU is gone
 
 

@@ -10,7 +10,7 @@ import pytest
 from sim_plant.candle import Candle
 from sim_plant.sensors import CH_IR, Gp2d12Model, SensorSuite, distance_to_mv, new_output
 
-# DESIGN.md, datasheet typical curve: cm -> V.
+# The GP2D12 datasheet's typical curve (as in sim_plant/sensors/gp2d12.py): cm -> V.
 DATASHEET = [(10, 2.45), (12, 2.125), (14, 1.86), (16, 1.66), (18, 1.52), (20, 1.38),
              (25, 1.14), (30, 0.975), (35, 0.85), (40, 0.76), (45, 0.68), (50, 0.62),
              (60, 0.54), (70, 0.48), (80, 0.42)]

@@ -13,7 +13,7 @@ def test_defaults_within_contest_limits() -> None:
     assert r.body.length_front + r.body.length_rear <= 0.31
     assert r.body.width <= 0.31
     assert set(r.ir) == set(IR_NAMES)
-    assert pytest.approx(6.69) == r.motor.R  # the NXT set in DESIGN.md
+    assert pytest.approx(6.69) == r.motor.R  # the LEGO NXT set (sim_plant/data/robot_default.toml)
 
 
 def test_override_by_dotted_path_copies() -> None:

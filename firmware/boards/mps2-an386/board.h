@@ -16,7 +16,7 @@ void uart_puts(const char *s);
 /* -1 when nothing has arrived */
 int uart_getc(void);
 int uart_rx_empty(void);
-/* bytes the UART lost before the driver could read them (its overrun flag) */
+/* 1 once the UART has lost a byte before the driver read it (its sticky overrun flag) */
 uint32_t uart_rx_overruns(void);
 void uart1_puts(const char *s);
 void uart0_rx_handler(void);

@@ -1,0 +1,52 @@
+"""Figures in the README and docs are what their commands print now.
+
+A number quoted from a command drifts the moment the code changes; these
+tests run the command and compare, so a stale figure fails here with the
+line to paste instead of misleading a reader."""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+README = (REPO / "README.md").read_text(encoding="utf-8")
+PIL_DOC = (REPO / "docs" / "pil.md").read_text(encoding="utf-8")
+
+
+def _make(*targets: str) -> str:
+    res = subprocess.run(["make", "-s", *targets], cwd=REPO, capture_output=True, text=True, timeout=600)
+    assert res.returncode == 0, res.stderr
+    return res.stdout
+
+
+def test_readme_results_table_is_what_make_run_prints() -> None:
+    block = re.search(r"## Results \(`make run`\)\s*```\n(.*?)```", README, re.S)
+    assert block, "README: the Results block is missing"
+    res = subprocess.run([sys.executable, "-m", "harness", "table1"], cwd=REPO, capture_output=True, text=True,
+                         timeout=300)
+    assert res.returncode == 0, res.stderr
+    assert block.group(1).strip() == res.stdout.strip(), f"README Results: paste\n{res.stdout}"
+
+
+needs_arm = pytest.mark.skipif(
+    shutil.which("arm-none-eabi-gcc") is None and not os.environ.get("CI"),
+    reason="needs arm-none-eabi-gcc (CI installs it)")
+
+
+@needs_arm
+def test_readme_cortex_m4_size_is_what_the_build_prints() -> None:
+    line = next(ln for ln in _make("firmware-arm").splitlines() if ln.startswith("cortex-m4: flash"))
+    assert f"`{line}`" in README, f"README, section Firmware: quote `{line}`"
+
+
+@needs_arm
+def test_pil_doc_board_size_is_what_the_build_prints() -> None:
+    line = next(ln for ln in _make("firmware-boards").splitlines() if ln.startswith("mps2-an386 board: flash"))
+    assert f"`{line}`" in PIL_DOC, f"docs/pil.md: quote `{line}`"
