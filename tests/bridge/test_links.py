@@ -162,10 +162,11 @@ def test_a_board_answering_garbage_counts_crc_errors(fake) -> None:
     # every try met a CRC error, and each was sent again
     assert m and int(m.group(1)) == int(m.group(2)) == int(m.group(3)) + 1
     # ... after a backoff from 10 ms (1/16 of timeout_s) doubling to 160 ms, not in a burst:
-    # 10 + 20 + 40 + 80 ms, then one every 160 ms until the 3 s are spent
-    assert 18 <= int(m.group(1)) <= 24
-    gaps = np.diff(heard)
-    assert gaps[0] >= 0.009 and gaps[3] >= 0.079 and min(gaps[4:]) >= 0.159
+    # 10 + 20 + 40 + 80 ms, then one every 160 ms until the 3 s are spent (22 tries; a busy
+    # machine makes fewer, never more; the old immediate resends made 51)
+    assert 8 <= int(m.group(1)) <= 24
+    gaps = np.diff(heard)  # as the board saw them: a late arrival lengthens one gap, shortens the next
+    assert gaps[0] >= 0.009 and np.median(gaps[4:]) >= 0.15
 
 
 def test_a_board_error_report_that_retrying_cannot_fix_ends_the_run(fake) -> None:

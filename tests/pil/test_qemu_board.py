@@ -39,7 +39,9 @@ def board_image() -> None:
 
 
 def _qemu_pids() -> set[int]:
-    out = subprocess.run(["pgrep", "-f", "qemu-system-arm -M mps2-an386"], capture_output=True, text=True)
+    # this checkout's boards only: another checkout's QEMU on the same machine is not ours to count
+    out = subprocess.run(["pgrep", "-f", f"qemu-system-arm -M .* -kernel {REPO}/build/"], capture_output=True,
+                         text=True)
     return {int(p) for p in out.stdout.split()}
 
 
