@@ -209,11 +209,12 @@ static float approach_guard(const ffr_state_t *st, float bal, int *stop, int *ne
     for (k = 0; k < 3; ++k) {
         int i = rangers[k];
         float d = st->ir_mm[i];
-        float px, py, side_gap, front_gap;
+        float px = st->ir_geom.hit_x_mm[i];
+        float py = st->ir_geom.hit_y_mm[i];
+        float side_gap, front_gap;
         if (!ffr_ir_valid(cfg, d)) {
             continue;
         }
-        ffr_ir_hit(cfg, i, d, &px, &py);
         side_gap = ffr_absf(py) - cfg->body_half_width_mm;
         front_gap = px - cfg->body_front_mm;
         if (px > 0.0f && side_gap < cfg->guard_side_mm && front_gap < cfg->guard_side_mm) {
@@ -248,7 +249,7 @@ static float scan_room_offset(const ffr_state_t *st)
     float off = 0.0f;
     int side;
     for (side = 0; side < 2; ++side) {
-        ffr_wall_t w = ffr_wall_estimate(cfg, st->ir_mm, side);
+        ffr_wall_t w = ffr_wall_estimate(cfg, &st->ir_geom, st->ir_mm, side);
         if (w.valid && w.dist_mm < need) {
             /* left wall: turn right (negative), and the other way round */
             off += (side == FFR_SIDE_LEFT ? -1.0f : 1.0f) * (need - w.dist_mm) * 0.5f * FFR_DEG;

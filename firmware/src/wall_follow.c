@@ -22,23 +22,26 @@
  * an opening (measured with the wall calibration in place: 98.4 -> 99.5 %
  * of 800 missions over 200 robots, docs/robustness.md).
  */
-int ffr_hit_beside(const ffr_config_t *cfg, int i, float d_mm, float *px, float *py)
+int ffr_hit_beside(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT], int i,
+                   float *px, float *py)
 {
-    if (!ffr_ir_valid(cfg, d_mm)) {
+    if (!ffr_ir_valid(cfg, ir_mm[i])) {
         return 0;
     }
-    ffr_ir_hit(cfg, i, d_mm, px, py);
+    *px = g->hit_x_mm[i];
+    *py = g->hit_y_mm[i];
     return ffr_absf(*py) < cfg->open_mm;
 }
 
-ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], int side)
+ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
+                             int side)
 {
     ffr_wall_t w;
     int f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
     int r = side == FFR_SIDE_LEFT ? FFR_IR_LR : FFR_IR_RR;
     float fx = 0.0f, fy = 0.0f, rx = 0.0f, ry = 0.0f;
-    int fv = ffr_hit_beside(cfg, f, ir_mm[f], &fx, &fy);
-    int rv = ffr_hit_beside(cfg, r, ir_mm[r], &rx, &ry);
+    int fv = ffr_hit_beside(cfg, g, ir_mm, f, &fx, &fy);
+    int rv = ffr_hit_beside(cfg, g, ir_mm, r, &rx, &ry);
     w.valid = 0;
     w.angle_valid = 0;
     w.dist_mm = 0.0f;
