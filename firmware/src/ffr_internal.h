@@ -7,9 +7,22 @@
 #define FFR_PI 3.14159265358979f
 #define FFR_DEG 0.0174532925199433f /* rad per degree */
 
+/* The smallest helpers are inline: each is called dozens of times a tick,
+ * and as a call into another translation unit it cost the target (-Os, no
+ * LTO) several times its own few instructions. Same arithmetic either way. */
+static inline float ffr_absf(float x) { return x < 0.0f ? -x : x; }
+static inline float ffr_clampf(float x, float lo, float hi)
+{
+    if (x < lo) {
+        return lo;
+    }
+    if (x > hi) {
+        return hi;
+    }
+    return x;
+}
+
 /* fmath.c: portable math, bit-identical on glibc and newlib targets. */
-float ffr_absf(float x);
-float ffr_clampf(float x, float lo, float hi);
 float ffr_wrap_pi(float a);
 float ffr_sinf(float x);
 float ffr_cosf(float x);
@@ -19,7 +32,7 @@ float ffr_sqrtf(float x);
 /* ir_calibration.c: GP2D12 mV -> distance from the sensor, mm. */
 #define FFR_IR_NONE(cfg) ((cfg)->ir_max_mm + 1.0f)
 float ffr_ir_mv_to_mm(const ffr_config_t *cfg, uint16_t mv);
-int ffr_ir_valid(const ffr_config_t *cfg, float d_mm);
+static inline int ffr_ir_valid(const ffr_config_t *cfg, float d_mm) { return d_mm <= cfg->ir_max_mm; }
 /* The rangers' beam directions from cfg (once: ffr_init), then each tick
  * where the readings ir_mm put the hits, in the body frame (x ahead, y left), mm. */
 void ffr_ir_geom_init(ffr_ir_geom_t *g, const ffr_config_t *cfg);

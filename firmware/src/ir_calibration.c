@@ -25,8 +25,6 @@ float ffr_ir_mv_to_mm(const ffr_config_t *cfg, uint16_t mv)
     return d;
 }
 
-int ffr_ir_valid(const ffr_config_t *cfg, float d_mm) { return d_mm <= cfg->ir_max_mm; }
-
 void ffr_ir_geom_init(ffr_ir_geom_t *g, const ffr_config_t *cfg)
 {
     int i;
