@@ -10,29 +10,6 @@
 /* a front hit within this of the wall ahead (forward, mm) is on that wall */
 #define AHEAD_MARGIN_MM 70.0f
 
-/*
- * A hit farther to the side than open_mm is across an opening (a crossing
- * hallway's far wall, a room beyond its door), not the wall beside the
- * robot. The limit keeps the two apart for every GP2D12 within its datasheet
- * limits: a wall at the wanted distance (230 mm) reads at most ~30 % long,
- * more on a robot that has drifted a few centimetres out; a crossing
- * hallway's far wall (~690 mm to the side) at least ~25 % short (~520 mm).
- * open_mm (400) sits between them with margin both ways; halfway to the
- * wanted distance (315 mm), as it was, turned a long-reading part's wall into
- * an opening (measured with the wall calibration in place: 98.4 -> 99.5 %
- * of 800 missions over 200 robots, docs/robustness.md).
- */
-int ffr_hit_beside(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT], int i,
-                   float *px, float *py)
-{
-    if (!ffr_ir_valid(cfg, ir_mm[i])) {
-        return 0;
-    }
-    *px = g->hit_x_mm[i];
-    *py = g->hit_y_mm[i];
-    return ffr_absf(*py) < cfg->open_mm;
-}
-
 ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
                              int side)
 {
