@@ -300,6 +300,18 @@ typedef struct {
     float flame_f;                 /* flame sum, filtered: is it out?          */
 } ffr_room_state_t;
 
+/* The rangers' geometry in the body frame (x ahead, y left; ir_calibration.c):
+ * each beam's direction, from the configuration (set by ffr_init), and where
+ * this tick's readings put the hits, worked out once per tick for every
+ * behaviour that uses them (openings, wall direction, wall line, guards).
+ * A hit is meaningful only for a valid reading (ffr_ir_valid). */
+typedef struct {
+    float beam_cos[FFR_IR_COUNT];  /* cos, sin of ir_angle_deg                */
+    float beam_sin[FFR_IR_COUNT];
+    float hit_x_mm[FFR_IR_COUNT];  /* this tick's hit points                  */
+    float hit_y_mm[FFR_IR_COUNT];
+} ffr_ir_geom_t;
+
 typedef struct {
     ffr_config_t cfg;
     ffr_odometry_t odo;
@@ -310,6 +322,7 @@ typedef struct {
     ffr_wall_cal_t wall_cal;
     ffr_room_state_t room;
     float ir_mm[FFR_IR_COUNT];     /* last calibrated ranges (ir_max_mm+1 = none) */
+    ffr_ir_geom_t ir_geom;         /* and their hit points                    */
     uint32_t t_ms;
     uint32_t last_t_ms;
     uint8_t state;                 /* ffr_state_code_t                        */

@@ -45,7 +45,7 @@ static void true_up_heading(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
     float dir, err, corr, diff;
-    if (!ffr_wall_dir_update(&st->wall_cal, cfg, &st->odo, st->ir_mm, &dir) || cfg->wall_align_gain <= 0.0f) {
+    if (!ffr_wall_dir_update(&st->wall_cal, cfg, &st->odo, &st->ir_geom, st->ir_mm, &dir) || cfg->wall_align_gain <= 0.0f) {
         return;
     }
     err = ffr_off_square(dir);
@@ -70,11 +70,11 @@ void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
     float v = ffr_proximity_speed(cfg, st->ir_mm, speed);
     true_up_heading(st);
     if (side == FFR_SIDE_LEFT || side == FFR_SIDE_RIGHT) {
-        w = ffr_wall_estimate(cfg, st->ir_mm, side);
+        w = ffr_wall_estimate(cfg, &st->ir_geom, st->ir_mm, side);
         if (w.valid && w.dist_mm < cfg->open_mm) {
             use = side;
         } else {
-            w = ffr_wall_estimate(cfg, st->ir_mm, 1 - side);
+            w = ffr_wall_estimate(cfg, &st->ir_geom, st->ir_mm, 1 - side);
             if (w.valid && w.dist_mm < cfg->open_mm) {
                 use = 1 - side;
             }

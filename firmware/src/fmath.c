@@ -7,19 +7,6 @@
  */
 #include "ffr_internal.h"
 
-float ffr_absf(float x) { return x < 0.0f ? -x : x; }
-
-float ffr_clampf(float x, float lo, float hi)
-{
-    if (x < lo) {
-        return lo;
-    }
-    if (x > hi) {
-        return hi;
-    }
-    return x;
-}
-
 float ffr_wrap_pi(float a)
 {
     const float two_pi = 2.0f * FFR_PI;

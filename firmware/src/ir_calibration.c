@@ -25,11 +25,25 @@ float ffr_ir_mv_to_mm(const ffr_config_t *cfg, uint16_t mv)
     return d;
 }
 
-int ffr_ir_valid(const ffr_config_t *cfg, float d_mm) { return d_mm <= cfg->ir_max_mm; }
-
-void ffr_ir_hit(const ffr_config_t *cfg, int i, float d_mm, float *px, float *py)
+void ffr_ir_geom_init(ffr_ir_geom_t *g, const ffr_config_t *cfg)
 {
-    float a = cfg->ir_angle_deg[i] * FFR_DEG;
-    *px = cfg->ir_x_mm[i] + d_mm * ffr_cosf(a);
-    *py = cfg->ir_y_mm[i] + d_mm * ffr_sinf(a);
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        float a = cfg->ir_angle_deg[i] * FFR_DEG;
+        g->beam_cos[i] = ffr_cosf(a);
+        g->beam_sin[i] = ffr_sinf(a);
+        g->hit_x_mm[i] = cfg->ir_x_mm[i];
+        g->hit_y_mm[i] = cfg->ir_y_mm[i];
+    }
+}
+
+/* Every ranger's, valid or not: cheaper than asking which (a few
+ * multiply-adds each), and the mounting angles' trig is not redone. */
+void ffr_ir_geom_update(ffr_ir_geom_t *g, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT])
+{
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        g->hit_x_mm[i] = cfg->ir_x_mm[i] + ir_mm[i] * g->beam_cos[i];
+        g->hit_y_mm[i] = cfg->ir_y_mm[i] + ir_mm[i] * g->beam_sin[i];
+    }
 }

@@ -19,6 +19,7 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
 {
     int i;
     st->cfg = *cfg;
+    ffr_ir_geom_init(&st->ir_geom, &st->cfg);
     ffr_odometry_reset(&st->odo);
     ffr_speed_reset(&st->speed);
     ffr_lines_reset(&st->lines);
@@ -93,6 +94,7 @@ void ffr_step(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out)
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         st->ir_mm[i] = ffr_ir_mv_to_mm(cfg, in->ir_mv[i]);
     }
+    ffr_ir_geom_update(&st->ir_geom, cfg, st->ir_mm);
     /* the flame sensors' dark level (amplifier offset plus ambient light):
      * the lowest slowly filtered reading so far, most of it read with no
      * flame in view; room.c measures the flame above it */
@@ -110,7 +112,7 @@ void ffr_step(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out)
     before = st->odo.dist_mm;
     ffr_odometry_update(&st->odo, cfg, in->enc, dt);
     ffr_lines_update(&st->lines, cfg, in->line, st->odo.dist_mm);
-    ffr_openings_update(&st->open, cfg, st->ir_mm, st->odo.dist_mm, st->odo.dist_mm - before);
+    ffr_openings_update(&st->open, cfg, &st->ir_geom, st->ir_mm, st->odo.dist_mm, st->odo.dist_mm - before);
 
     st->fan = 0;
     if (!st->started) {

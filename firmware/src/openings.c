@@ -41,8 +41,8 @@ void ffr_openings_reset(ffr_openings_t *op)
     }
 }
 
-void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT],
-                         float dist_mm, float step_mm)
+void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_ir_geom_t *g,
+                         const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm)
 {
     int side;
     for (side = 0; side < 2; ++side) {
@@ -51,8 +51,8 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const floa
         /* a wall beside the robot, not one across an opening (wall_follow.c);
          * fx, rx: how far ahead the hits are, fy, ry: to the side */
         float fx = 0.0f, fy = 0.0f, rx = 0.0f, ry = 0.0f;
-        int front = ffr_hit_beside(cfg, f, ir_mm[f], &fx, &fy);
-        int rear = ffr_hit_beside(cfg, r, ir_mm[r], &rx, &ry);
+        int front = ffr_hit_beside(cfg, g, ir_mm, f, &fx, &fy);
+        int rear = ffr_hit_beside(cfg, g, ir_mm, r, &rx, &ry);
         if (front) {
             float lat = ffr_absf(fy);
             if (op->front_lat_mm[side] < 0.0f) {

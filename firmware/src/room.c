@@ -122,29 +122,42 @@ static int through_door(const ffr_state_t *st, float dir)
     return ffr_absf(lat) < st->cfg.hallway_half_mm;
 }
 
+/* The heading's and the entry heading's cosine and sine, worked out once a
+ * tick for every depth_in of that tick. */
+typedef struct {
+    float c, s;   /* heading       */
+    float ce, se; /* entry heading */
+} door_frame_t;
+
+static door_frame_t door_frame(const ffr_state_t *st)
+{
+    door_frame_t f;
+    f.c = ffr_cosf(st->odo.heading_rad);
+    f.s = ffr_sinf(st->odo.heading_rad);
+    f.ce = ffr_cosf(st->room.entry_heading_rad);
+    f.se = ffr_sinf(st->room.entry_heading_rad);
+    return f;
+}
+
 /* A body-frame point relative to where the doorway line was crossed: depth
  * into the room (along the entry heading) and lateral offset, mm. */
-static float depth_in(const ffr_state_t *st, float bx, float by, float *lateral)
+static float depth_in(const ffr_state_t *st, const door_frame_t *f, float bx, float by, float *lateral)
 {
     const ffr_room_state_t *r = &st->room;
-    float c = ffr_cosf(st->odo.heading_rad);
-    float s = ffr_sinf(st->odo.heading_rad);
-    float dx = st->odo.x_mm + c * bx - s * by - r->line_x_mm;
-    float dy = st->odo.y_mm + s * bx + c * by - r->line_y_mm;
-    float ce = ffr_cosf(r->entry_heading_rad);
-    float se = ffr_sinf(r->entry_heading_rad);
+    float dx = st->odo.x_mm + f->c * bx - f->s * by - r->line_x_mm;
+    float dy = st->odo.y_mm + f->s * bx + f->c * by - r->line_y_mm;
     if (lateral) {
-        *lateral = -dx * se + dy * ce;
+        *lateral = -dx * f->se + dy * f->ce;
     }
-    return dx * ce + dy * se;
+    return dx * f->ce + dy * f->se;
 }
 
 /* Is the robot's nose at the doorway it came in by (its line, or about to
  * reach it)? Approaching a flame, that means the flame is out there. */
-static int nose_in_doorway(const ffr_state_t *st)
+static int nose_in_doorway(const ffr_state_t *st, const door_frame_t *f)
 {
     float lat;
-    float depth = depth_in(st, st->cfg.line_sensor_x_mm, 0.0f, &lat);
+    float depth = depth_in(st, f, st->cfg.line_sensor_x_mm, 0.0f, &lat);
     return depth < 60.0f && ffr_absf(lat) < st->cfg.hallway_half_mm;
 }
 
@@ -160,7 +173,7 @@ static int nose_in_doorway(const ffr_state_t *st)
  * beside it instead of nose first, which stopped the robot with the fans out
  * of reach.
  */
-static float door_wall_guard(const ffr_state_t *st, float bal, int *stop)
+static float door_wall_guard(const ffr_state_t *st, const door_frame_t *f, float bal, int *stop)
 {
     const ffr_config_t *cfg = &st->cfg;
     /* only by the door: farther along, the wall is a wall the rangers see, and
@@ -171,7 +184,7 @@ static float door_wall_guard(const ffr_state_t *st, float bal, int *stop)
     int k;
     for (k = 0; k < 2; ++k) {
         float lat;
-        float d = depth_in(st, cfg->body_front_mm, k ? cfg->body_half_width_mm : -cfg->body_half_width_mm, &lat);
+        float d = depth_in(st, f, cfg->body_front_mm, k ? cfg->body_half_width_mm : -cfg->body_half_width_mm, &lat);
         if (ffr_absf(lat) >= reach) {
             continue;
         }
@@ -197,7 +210,7 @@ static float door_wall_guard(const ffr_state_t *st, float bal, int *stop)
  * wall is about to touch a front corner. The GP2D12 folds back under 10 cm,
  * so this must act while the wall is still seen, not at contact.
  */
-static float approach_guard(const ffr_state_t *st, float bal, int *stop, int *near)
+static float approach_guard(const ffr_state_t *st, const door_frame_t *f, float bal, int *stop, int *near)
 {
     const ffr_config_t *cfg = &st->cfg;
     static const int rangers[3] = {FFR_IR_CF, FFR_IR_LF, FFR_IR_RF};
@@ -209,11 +222,12 @@ static float approach_guard(const ffr_state_t *st, float bal, int *stop, int *ne
     for (k = 0; k < 3; ++k) {
         int i = rangers[k];
         float d = st->ir_mm[i];
-        float px, py, side_gap, front_gap;
+        float px = st->ir_geom.hit_x_mm[i];
+        float py = st->ir_geom.hit_y_mm[i];
+        float side_gap, front_gap;
         if (!ffr_ir_valid(cfg, d)) {
             continue;
         }
-        ffr_ir_hit(cfg, i, d, &px, &py);
         side_gap = ffr_absf(py) - cfg->body_half_width_mm;
         front_gap = px - cfg->body_front_mm;
         if (px > 0.0f && side_gap < cfg->guard_side_mm && front_gap < cfg->guard_side_mm) {
@@ -227,7 +241,7 @@ static float approach_guard(const ffr_state_t *st, float bal, int *stop, int *ne
             }
         }
     }
-    wd = door_wall_guard(st, bal, stop);
+    wd = door_wall_guard(st, f, bal, stop);
     if (wd != 0.0f) {
         *near = 1;
     }
@@ -248,7 +262,7 @@ static float scan_room_offset(const ffr_state_t *st)
     float off = 0.0f;
     int side;
     for (side = 0; side < 2; ++side) {
-        ffr_wall_t w = ffr_wall_estimate(cfg, st->ir_mm, side);
+        ffr_wall_t w = ffr_wall_estimate(cfg, &st->ir_geom, st->ir_mm, side);
         if (w.valid && w.dist_mm < need) {
             /* left wall: turn right (negative), and the other way round */
             off += (side == FFR_SIDE_LEFT ? -1.0f : 1.0f) * (need - w.dist_mm) * 0.5f * FFR_DEG;
@@ -338,7 +352,8 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         float bal = ((float)in->flame[0] - (float)in->flame[1]) / (sig > 1.0f ? sig : 1.0f);
         float v;
         int guard_stop, guard_near;
-        float guard_w = approach_guard(st, bal, &guard_stop, &guard_near);
+        const door_frame_t df = door_frame(st);
+        float guard_w = approach_guard(st, &df, bal, &guard_stop, &guard_near);
         /* beside a wall with the flame already within the fans' reach: stop
          * here rather than creep on along the wall; a part reading long
          * lets a front corner reach the wall before the guard stops it */
@@ -347,7 +362,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         }
         if (st->lines.edge || guard_stop || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
             ffr_stop(st);
-            if (nose_in_doorway(st) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
+            if (nose_in_doorway(st, &df) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
                 /* at the doorway it came in by, or stopped by a wall with the
                  * flame still far: the flame is not in this room but seen
                  * through its door. Back out and search on. */

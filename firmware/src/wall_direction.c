@@ -80,7 +80,7 @@ static int line_of(const ffr_hit_window_t *hw, float heading, float *dir)
 }
 
 int ffr_wall_dir_update(ffr_wall_cal_t *c, const ffr_config_t *cfg, const ffr_odometry_t *o,
-                        const float ir_mm[FFR_IR_COUNT], float *wall_dir)
+                        const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT], float *wall_dir)
 {
     int i, found = 0;
     float sum = 0.0f;
@@ -89,7 +89,7 @@ int ffr_wall_dir_update(ffr_wall_cal_t *c, const ffr_config_t *cfg, const ffr_od
     for (i = FFR_IR_LF; i <= FFR_IR_RR; ++i) {
         ffr_hit_window_t *hw = &c->hits[i - 1];
         float bx, by, x, y, dir;
-        if (!ffr_hit_beside(cfg, i, ir_mm[i], &bx, &by)) {
+        if (!ffr_hit_beside(cfg, g, ir_mm, i, &bx, &by)) {
             restart(hw);
             continue;
         }

@@ -10,35 +10,15 @@
 /* a front hit within this of the wall ahead (forward, mm) is on that wall */
 #define AHEAD_MARGIN_MM 70.0f
 
-/*
- * A hit farther to the side than open_mm is across an opening (a crossing
- * hallway's far wall, a room beyond its door), not the wall beside the
- * robot. The limit keeps the two apart for every GP2D12 within its datasheet
- * limits: a wall at the wanted distance (230 mm) reads at most ~30 % long,
- * more on a robot that has drifted a few centimetres out; a crossing
- * hallway's far wall (~690 mm to the side) at least ~25 % short (~520 mm).
- * open_mm (400) sits between them with margin both ways; halfway to the
- * wanted distance (315 mm), as it was, turned a long-reading part's wall into
- * an opening (measured with the wall calibration in place: 98.4 -> 99.5 %
- * of 800 missions over 200 robots, docs/robustness.md).
- */
-int ffr_hit_beside(const ffr_config_t *cfg, int i, float d_mm, float *px, float *py)
-{
-    if (!ffr_ir_valid(cfg, d_mm)) {
-        return 0;
-    }
-    ffr_ir_hit(cfg, i, d_mm, px, py);
-    return ffr_absf(*py) < cfg->open_mm;
-}
-
-ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], int side)
+ffr_wall_t ffr_wall_estimate(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
+                             int side)
 {
     ffr_wall_t w;
     int f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
     int r = side == FFR_SIDE_LEFT ? FFR_IR_LR : FFR_IR_RR;
     float fx = 0.0f, fy = 0.0f, rx = 0.0f, ry = 0.0f;
-    int fv = ffr_hit_beside(cfg, f, ir_mm[f], &fx, &fy);
-    int rv = ffr_hit_beside(cfg, r, ir_mm[r], &rx, &ry);
+    int fv = ffr_hit_beside(cfg, g, ir_mm, f, &fx, &fy);
+    int rv = ffr_hit_beside(cfg, g, ir_mm, r, &rx, &ry);
     w.valid = 0;
     w.angle_valid = 0;
     w.dist_mm = 0.0f;

@@ -71,11 +71,20 @@ void rig_room_route(ffr_config_t *cfg, int home)
     }
 }
 
+const ffr_ir_geom_t *rig_geom(ffr_ir_geom_t *g, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT])
+{
+    ffr_ir_geom_init(g, cfg);
+    ffr_ir_geom_update(g, cfg, ir_mm);
+    return g;
+}
+
 void rig_travel(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float *d, int ticks)
 {
+    ffr_ir_geom_t g;
     int i;
+    rig_geom(&g, cfg, ir_mm);
     for (i = 0; i < ticks; ++i, *d += 3.0f) {
-        ffr_openings_update(op, cfg, ir_mm, *d, 3.0f);
+        ffr_openings_update(op, cfg, &g, ir_mm, *d, 3.0f);
     }
 }
 

@@ -27,6 +27,9 @@ void rig_line(rig_t *r, int before, int on);
 /* A route that searches room 1 (ROOM 1, END) and, with `home`, its way home:
  * HOME with no wall to follow */
 void rig_room_route(ffr_config_t *cfg, int home);
+/* The rangers' hit points for readings ir_mm, as ffr_step works them out
+ * (the beam directions from cfg, then the hits); returns g. */
+const ffr_ir_geom_t *rig_geom(ffr_ir_geom_t *g, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT]);
 /* openings.c alone: `ticks` ticks of 3 mm travel from *d with these ranges */
 void rig_travel(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float *d, int ticks);
 /* Straight walls around a true pose, for the rangers' readings in closed-loop tests. */

@@ -24,4 +24,24 @@ void suite_ir_calibration(void)
     CHECK_NEAR(ffr_ir_mv_to_mm(&cfg, 3000), cfg.ir_min_mm, 0.01);
     /* monotone: more mV, nearer */
     CHECK(ffr_ir_mv_to_mm(&cfg, 1500) < ffr_ir_mv_to_mm(&cfg, 1000));
+    /* the hit points worked out once a tick (beam cos/sin kept from the
+     * configuration) are bit for bit the mounting pose plus the reading
+     * along the beam with the trig done on the spot */
+    {
+        ffr_ir_geom_t g;
+        float ir[FFR_IR_COUNT];
+        int k, r;
+        ffr_ir_geom_init(&g, &cfg);
+        for (k = 0; k < 40; ++k) {
+            for (r = 0; r < FFR_IR_COUNT; ++r) {
+                ir[r] = cfg.ir_min_mm + (float)(k * 7 + r * 3) * 3.3f;
+            }
+            ffr_ir_geom_update(&g, &cfg, ir);
+            for (r = 0; r < FFR_IR_COUNT; ++r) {
+                float a = cfg.ir_angle_deg[r] * FFR_DEG;
+                CHECK(g.hit_x_mm[r] == cfg.ir_x_mm[r] + ir[r] * ffr_cosf(a));
+                CHECK(g.hit_y_mm[r] == cfg.ir_y_mm[r] + ir[r] * ffr_sinf(a));
+            }
+        }
+    }
 }

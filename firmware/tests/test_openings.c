@@ -64,8 +64,9 @@ void suite_openings(void)
         rig_travel(&op3, &cfg, ir3, &d3, 50);
         ir3[FFR_IR_LF] = 226.0f + 100.0f / 0.70710678f;
         {
+            ffr_ir_geom_t g;
             float px, py;
-            CHECK(ffr_hit_beside(&cfg, FFR_IR_LF, ir3[FFR_IR_LF], &px, &py));
+            CHECK(ffr_hit_beside(&cfg, rig_geom(&g, &cfg, ir3), ir3, FFR_IR_LF, &px, &py));
         }
         rig_travel(&op3, &cfg, ir3, &d3, 8);
         CHECK(ffr_opening(&op3, FFR_SIDE_LEFT));
@@ -75,7 +76,8 @@ void suite_openings(void)
         ffr_openings_reset(&op3);
         for (i = 0; i < 100; ++i, d3 += 3.0f) {
             ir3[FFR_IR_LF] = 226.0f + (float)i * 1.5f;
-            ffr_openings_update(&op3, &cfg, ir3, d3, 3.0f);
+            ffr_ir_geom_t g;
+            ffr_openings_update(&op3, &cfg, rig_geom(&g, &cfg, ir3), ir3, d3, 3.0f);
         }
         CHECK(op3.seen[FFR_SIDE_LEFT] && !ffr_opening(&op3, FFR_SIDE_LEFT));
     }

@@ -38,6 +38,7 @@ static void far_hits_are_not_the_wall(void)
 {
     ffr_config_t cfg;
     float ir[FFR_IR_COUNT];
+    ffr_ir_geom_t g;
     ffr_wall_t w;
     ffr_config_default(&cfg);
     rig_no_walls(&cfg, ir);
@@ -45,7 +46,7 @@ static void far_hits_are_not_the_wall(void)
      * an opening and hits a wall across it, 420 mm to the side */
     ir[FFR_IR_RR] = (230.0f - 70.0f) / 0.70710678f;
     ir[FFR_IR_RF] = (420.0f - 70.0f) / 0.70710678f;
-    w = ffr_wall_estimate(&cfg, ir, FFR_SIDE_RIGHT);
+    w = ffr_wall_estimate(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_SIDE_RIGHT);
     CHECK(w.valid && !w.angle_valid);
     CHECK_NEAR(w.dist_mm, 230.0, 0.5);
 }
@@ -63,6 +64,7 @@ static void one_ranger_keeps_heading_feedback(void)
     /* only the right-rear ranger sees the wall, at the target distance; the
      * robot points 10 degrees left of the corridor: steer back right */
     st.ir_mm[FFR_IR_RR] = (cfg.wall_target_mm - 70.0f) / 0.70710678f;
+    ffr_ir_geom_update(&st.ir_geom, &st.cfg, st.ir_mm); /* as ffr_step does with new readings */
     st.route.heading_ref_rad = 0.0f;
     st.odo.heading_rad = 10.0f * FFR_DEG;
     ffr_drive_corridor(&st, FFR_SIDE_RIGHT, 300.0f);

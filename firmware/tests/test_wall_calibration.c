@@ -216,7 +216,9 @@ static void opposite_parts_no_longer_tilt_the_corridor_heading(void)
     /* without the correction the corridor heading would hold the tilt: the
      * measured angle, tilt not taken off, is what it would follow */
     {
-        ffr_wall_t w = ffr_wall_estimate(&wd.r.st.cfg, wd.r.st.ir_mm, FFR_SIDE_RIGHT);
+        ffr_ir_geom_t g;
+        ffr_wall_t w = ffr_wall_estimate(&wd.r.st.cfg, rig_geom(&g, &wd.r.st.cfg, wd.r.st.ir_mm), wd.r.st.ir_mm,
+                                         FFR_SIDE_RIGHT);
         CHECK(w.angle_valid);
         CHECK(ffr_absf(w.angle_rad / FFR_DEG - -wd.th / FFR_DEG) > 3.0f);
     }

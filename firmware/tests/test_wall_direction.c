@@ -12,6 +12,7 @@ static int drive_worst(ffr_wall_cal_t *c, const ffr_config_t *cfg, const rig_wal
                        float turn_per_mm, float mm, float *dir_out, float *worst)
 {
     ffr_odometry_t o;
+    ffr_ir_geom_t g;
     float ir[FFR_IR_COUNT];
     float y = 0.0f, s = 0.0f, dir;
     int i, found = 0;
@@ -25,7 +26,7 @@ static int drive_worst(ffr_wall_cal_t *c, const ffr_config_t *cfg, const rig_wal
         o.y_mm = ffr_sinf(err) * *x + ffr_cosf(err) * y;
         o.heading_rad = th + err;
         o.dist_mm = s;
-        if (ffr_wall_dir_update(c, cfg, &o, ir, &dir)) {
+        if (ffr_wall_dir_update(c, cfg, &o, rig_geom(&g, cfg, ir), ir, &dir)) {
             *dir_out = dir;
             if (ffr_absf(dir - err) > *worst) {
                 *worst = ffr_absf(dir - err);

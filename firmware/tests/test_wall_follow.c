@@ -19,13 +19,14 @@ void suite_wall_follow(void)
 {
     ffr_config_t cfg;
     float ir[FFR_IR_COUNT];
+    ffr_ir_geom_t g;
     ffr_wall_t w;
     ffr_config_default(&cfg);
     rig_no_walls(&cfg, ir);
     /* a left wall 230 mm away, parallel */
     ir[FFR_IR_LF] = reading(&cfg, FFR_IR_LF, 0.0f, 1.0f, 230.0f);
     ir[FFR_IR_LR] = reading(&cfg, FFR_IR_LR, 0.0f, 1.0f, 230.0f);
-    w = ffr_wall_estimate(&cfg, ir, FFR_SIDE_LEFT);
+    w = ffr_wall_estimate(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_SIDE_LEFT);
     CHECK(w.valid && w.angle_valid);
     CHECK_NEAR(w.dist_mm, 230.0, 0.5);
     CHECK_NEAR(w.angle_rad, 0.0, 1e-3);
@@ -39,7 +40,7 @@ void suite_wall_follow(void)
         float nx = -ffr_sinf(a), ny = ffr_cosf(a);
         ir[FFR_IR_LF] = reading(&cfg, FFR_IR_LF, nx, ny, 230.0f);
         ir[FFR_IR_LR] = reading(&cfg, FFR_IR_LR, nx, ny, 230.0f);
-        w = ffr_wall_estimate(&cfg, ir, FFR_SIDE_LEFT);
+        w = ffr_wall_estimate(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_SIDE_LEFT);
         CHECK(w.angle_valid);
         CHECK_NEAR(w.angle_rad, a, 0.002);
         CHECK_NEAR(w.dist_mm, 230.0, 1.0);
@@ -49,17 +50,17 @@ void suite_wall_follow(void)
     ir[FFR_IR_LF] = ir[FFR_IR_LR] = FFR_IR_NONE(&cfg);
     ir[FFR_IR_RF] = reading(&cfg, FFR_IR_RF, 0.0f, -1.0f, 300.0f);
     ir[FFR_IR_RR] = reading(&cfg, FFR_IR_RR, 0.0f, -1.0f, 300.0f);
-    w = ffr_wall_estimate(&cfg, ir, FFR_SIDE_RIGHT);
+    w = ffr_wall_estimate(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_SIDE_RIGHT);
     CHECK(w.valid);
     CHECK_NEAR(w.dist_mm, 300.0, 0.5);
     CHECK(ffr_wall_follow_yaw(&cfg, &w, FFR_SIDE_RIGHT) < 0.0f);
     /* only the rear ranger: distance without angle */
     ir[FFR_IR_RF] = FFR_IR_NONE(&cfg);
-    w = ffr_wall_estimate(&cfg, ir, FFR_SIDE_RIGHT);
+    w = ffr_wall_estimate(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_SIDE_RIGHT);
     CHECK(w.valid && !w.angle_valid);
     CHECK_NEAR(w.dist_mm, 300.0, 60.0);
     /* nothing on the left */
-    w = ffr_wall_estimate(&cfg, ir, FFR_SIDE_LEFT);
+    w = ffr_wall_estimate(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_SIDE_LEFT);
     CHECK(!w.valid);
     /* heading hold turns toward the reference */
     CHECK(ffr_heading_hold_yaw(&cfg, 0.0f, 0.2f) > 0.0f);
