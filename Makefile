@@ -123,13 +123,13 @@ $(BUILD)/arm/mps2-an386-selftest.elf: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) $(MP
 $(BUILD)/arm/mps2-an386-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(MPS2_SRCS) $(MPS2_DIR)/main.c $(MPS2_DIR)/*.h $(MPS2_DIR)/*.ld Makefile
 	@mkdir -p $(dir $@)
 	$(ARM_CC) $(ARM_CFLAGS) -I$(MPS2_DIR) $(MPS2_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(MPS2_SRCS) $(MPS2_DIR)/main.c
-	@$(ARM_SIZE) $@ | awk 'NR==2 { printf "mps2-an386 board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
 
 $(BUILD)/host/ffr_selftest: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) firmware/boards/host_selftest/main.c Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(CSTD) -O2 -Ifirmware/boards/common -o $@ $(FW_SRCS) $(BOARD_COMMON) firmware/boards/host_selftest/main.c
 
 firmware-boards: $(BUILD)/arm/mps2-an386-selftest.elf $(BUILD)/arm/mps2-an386-board.elf $(BUILD)/host/ffr_selftest
+	@$(ARM_SIZE) $(BUILD)/arm/mps2-an386-board.elf | awk 'NR==2 { printf "mps2-an386 board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
 
 # Host and Cortex-M4 (on QEMU) step the same synthetic mission: same checksum?
 QEMU ?= qemu-system-arm
