@@ -144,12 +144,22 @@ class Plant:
         self._pwm_l = int(pwm_l)
         self._pwm_r = int(pwm_r)
 
-    def integrate(self, dt: float) -> None:
-        """Advance dt seconds, a whole number of plant steps."""
+    def steps_for(self, dt: float) -> int:
+        """Plant steps in dt seconds; dt must be a whole number of them."""
         n = round(dt / self.plant_dt)
         if n < 0 or abs(n * self.plant_dt - dt) > 1e-6 * self.plant_dt:
             raise ValueError(f"integrate({dt!r}): not a non-negative multiple of "
                              f"plant_dt = {self.plant_dt!r}")
+        return int(n)
+
+    def kernel_args(self) -> tuple[np.ndarray, ...]:
+        """(state, parameters, footprint scratch, walls, wall boxes) for ``_advance``,
+        which a compiled caller (harness/tick.py) runs on this plant's own state."""
+        return self._S, self._P, self._poly, self._walls, self._bbox
+
+    def integrate(self, dt: float) -> None:
+        """Advance dt seconds, a whole number of plant steps."""
+        n = self.steps_for(dt)
         if n:
             _advance(self._S, self._P, self._poly, self._walls, self._bbox,
                      self._pwm_l, self._pwm_r, n)

@@ -245,6 +245,11 @@ class SensorSuite:
         if _sample_kernel(t, x, y, theta, phi_l, phi_r, self.candle.lit, out, *self._args):
             self._stream.refill()
 
+    def kernel_args(self) -> tuple[np.ndarray, ...]:
+        """``_sample_kernel``'s arguments after ``out`` (state arrays shared with this suite),
+        for a compiled caller (harness/tick.py) that also does the refills."""
+        return self._args
+
     def reset(self) -> None:
         """Forget all sensor state (held ranger readings, slip, start time); noise stream kept."""
         self._ir_state[:] = 0.0
