@@ -106,8 +106,14 @@ class Mission:
 
     def run(self, record: bool = True, compiled: bool | None = None) -> tuple[MissionResult, Trace]:
         """Run the mission to its end. ``compiled``: the whole loop in one numba call
-        (harness/tick.py); None = whenever the link is the in-process ``CtypesLink``,
+        (harness/tick.py); None = whenever the link is the in-process ``CtypesLink`` itself,
         False = the Python loop, one call per part per tick (any link)."""
+        link = self.link
+        if compiled is None:
+            # exactly CtypesLink: a subclass may override step, which the kernel would bypass
+            compiled = type(link) is CtypesLink
+        elif compiled and not isinstance(link, CtypesLink):
+            raise ValueError(f"{link.url}: the compiled loop needs the in-process ctypes: link")
         scn = self.scenario
         tm = scn.timing
         period_ms = tm.firmware_period_ms
@@ -118,12 +124,7 @@ class Mission:
         rng = np.random.default_rng(scn.seed)
         sensors = SensorSuite(scn.arena, scn.robot, candle, scn.noise, rng)
         cfg = build_config(scn.robot, scn.firmware, scn.source)
-        link = self.link
         link.reset(cfg)
-        if compiled is None:
-            compiled = isinstance(link, CtypesLink)
-        elif compiled and not isinstance(link, CtypesLink):
-            raise ValueError(f"{link.url}: the compiled loop needs the in-process ctypes: link")
 
         inp, out = new_inputs(), new_outputs()
         in_bytes = inp.reshape(1).view(np.uint8)

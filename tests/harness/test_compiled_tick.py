@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from harness.events import Event
-from harness.links import open_link
+from harness.links import FirmwareLink, open_link
+from harness.links.ctypes_link import CtypesLink
 from harness.loop import Mission, run_mission
 from harness.scenario import make_scenario
 
@@ -65,3 +66,30 @@ def test_no_record_gives_the_same_result() -> None:
     res_c, tr_c = run_mission(scn, record=False, compiled=True)
     res_p, _ = run_mission(scn, record=True, compiled=False)
     assert res_c == res_p and len(tr_c.f) == 0
+
+
+class _Wrapped(FirmwareLink):
+    """Any other link: the ctypes firmware behind the generic ``step`` (as a wire link is)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.inner = CtypesLink()
+        self.url = "wrapped:"
+
+    def _reset_impl(self, config: np.ndarray) -> None:
+        self.inner.reset(config)
+
+    def _step_impl(self, inputs: np.ndarray, outputs: np.ndarray) -> None:
+        self.inner.step(inputs, outputs)
+
+
+def test_other_links_take_the_python_loop_and_cannot_be_compiled() -> None:
+    scn = make_scenario(room=2, noise="typical", seed=6, events=_EVENTS[:3])
+    link = _Wrapped()
+    res_w, tr_w = run_mission(scn, link)
+    assert link.steps == len(tr_w.f)  # every tick went through link.step
+    res_c, tr_c = run_mission(scn, compiled=True)
+    assert np.array_equal(tr_w.f, tr_c.f) and np.array_equal(tr_w.i, tr_c.i)
+    assert res_w.outcome == res_c.outcome and res_w.sim_time_s == res_c.sim_time_s
+    with pytest.raises(ValueError, match="in-process ctypes"):
+        run_mission(scn, _Wrapped(), compiled=True)
