@@ -84,6 +84,7 @@ def _advance(S: np.ndarray, P: np.ndarray, poly: np.ndarray, wall_polys: np.ndar
     free = -1.0
     if S[S_IN_CONTACT] == 0.0:
         free = _free_distance(S[S_X], S[S_Y], wall_bbox) - P[P_RMAX] - _FREE_MARGIN
+    free0 = free
     moved = 0.0
     for _ in range(n):
         dl = side_step(S, S_LEFT, el, P)
@@ -119,9 +120,12 @@ def _advance(S: np.ndarray, P: np.ndarray, poly: np.ndarray, wall_polys: np.ndar
         elif S[S_IN_CONTACT] != 0.0 and released(poly, S[S_X], S[S_Y], S[S_TH], P,
                                                   wall_polys, wall_bbox):
             S[S_IN_CONTACT] = 0.0
-    footprint_into(poly, S[S_X], S[S_Y], S[S_TH], P, 0.0)
     # Only walls nearer than the best so far can lower the minimum: use it as cut-off.
-    if S[S_MIN_CLEAR] > 0.0:
+    # When even the nearest wall box is farther than that (free0 - moved bounds the
+    # footprint's distance to every box from below), clearance() would skip every
+    # wall and return the cut-off unchanged: skip it.
+    if S[S_MIN_CLEAR] > 0.0 and free0 - moved <= S[S_MIN_CLEAR]:
+        footprint_into(poly, S[S_X], S[S_Y], S[S_TH], P, 0.0)
         S[S_MIN_CLEAR] = clearance(poly, wall_polys, wall_bbox, S[S_MIN_CLEAR])
 
 
