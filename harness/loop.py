@@ -6,9 +6,11 @@ applied to the plant, which integrates over the tick. The firmware never runs
 ahead of the plant; each inputs frame carries the tick time and a sequence
 number and gets exactly one outputs frame back.
 
-The per-tick work is a handful of compiled kernels (sensors, plant) and one
-ctypes call; packing the inputs and recording the trace are compiled too,
-because at ~15,000 ticks per mission every microsecond of Python shows.
+With the in-process ``ctypes:`` link the whole loop runs in one compiled call
+(``harness/tick.py``: ~2 us a tick instead of ~11); every other link, and
+``Mission.run(compiled=False)``, takes the Python loop below (``_python_loop``),
+one call per part per tick: the reference the compiled loop is tested against
+bit for bit (tests/harness/test_compiled_tick.py).
 """
 
 from __future__ import annotations

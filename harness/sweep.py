@@ -3,9 +3,12 @@
 ``ffr sweep`` builds a list of jobs (plain dicts: candle, start, seed, noise,
 firmware and robot settings), cuts it into chunks and hands the chunks to a
 ``dask.distributed`` client: the cluster at ``--scheduler tcp://HOST:PORT``,
-or a ``LocalCluster`` of one single-threaded worker process per core. Both go
-through the same code (``execute``), so a sweep that runs here runs on a
-cluster unchanged. Dask rather than a home-made pool: it is the established
+or a ``LocalCluster`` of one single-threaded worker process per core
+(``--engine dask``). Both go through the same code (``execute``), so a sweep
+that runs here runs on a cluster unchanged. Local sweeps with the in-process
+link default to worker processes forked from this one once it is warm
+(``--engine processes``): the same chunks and rows without Dask's seconds of
+worker start-up. Dask rather than a home-made pool: it is the established
 engine for Python task farms, its workers are plain processes started with
 ``dask worker tcp://...`` on any machine, and it reports worker deaths and
 re-runs lost tasks.
