@@ -11,7 +11,7 @@ from harness.events import Event
 from harness.links import FirmwareLink, open_link
 from harness.links.ctypes_link import CtypesLink
 from harness.loop import Mission, run_mission
-from harness.scenario import make_scenario
+from harness.scenario import Timing, make_scenario
 
 _EVENTS = [
     Event(5.0, "ir.RF", "dead", duration_s=3.0),
@@ -33,6 +33,10 @@ CASES: dict[str, dict[str, Any]] = {
     "room1-noisy-event-to-the-end": {"room": 1, "seed": 9,
                                      "events": [Event(1.0, "ir.LF", "noisy", sigma=100.0)]},
     "room4-stop-on-contact": {"room": 4, "noise": "harsh", "seed": 1, "stop_on_contact": True},
+    "room2-find-limit": {"room": 2, "timing": Timing(find_limit_s=20.0)},
+    "room1-return-limit": {"room": 1, "noise": "typical", "timing": Timing(return_limit_s=3.0)},
+    "room3-10ms-plant-start-delay": {"room": 3, "noise": "datasheet", "seed": 2,
+                                     "timing": Timing(plant_dt_ms=10.0, start_delay_ms=500)},
 }
 
 
