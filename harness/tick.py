@@ -18,8 +18,6 @@ forces the Python loop, which the identity tests compare against.
 
 from __future__ import annotations
 
-import ctypes
-
 import numba as nb
 import numpy as np
 from llvmlite import ir
@@ -34,6 +32,7 @@ from sim_plant.sensors.suite import _sample_kernel
 
 # Why the kernel stopped (loop.py turns these into outcome and detail).
 END_DONE, END_FAILED, END_CONTACT, END_STUCK, END_FIND_LIMIT, END_RETURN_LIMIT, END_TICKS = range(1, 8)
+
 
 @intrinsic
 def _call_step(typingctx, fn, st, inp, out):  # type: ignore[no-untyped-def]
@@ -50,11 +49,6 @@ def _call_step(typingctx, fn, st, inp, out):  # type: ignore[no-untyped-def]
         return context.get_dummy_value()
 
     return sig, codegen
-
-
-def function_address(fn: ctypes._CFuncPtr) -> int:  # type: ignore[name-defined]
-    """The C address of a ctypes function (stable for the life of the loaded library)."""
-    return int(ctypes.cast(fn, ctypes.c_void_p).value or 0)
 
 
 # Packing the inputs and recording the trace: shared with loop.py's Python loop
