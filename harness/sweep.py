@@ -31,6 +31,7 @@ import math
 import multiprocessing
 import os
 import shlex
+import sys
 import time
 from collections import Counter
 from collections.abc import Callable, Iterable, Sequence
@@ -247,7 +248,8 @@ def pick_engine(jobs: Sequence[dict[str, Any]], scheduler: str | None, engine: s
         if engine == "processes" and scheduler:
             raise ValueError("engine 'processes' is local: not with a scheduler")
         return engine
-    forkable = "fork" in multiprocessing.get_all_start_methods()
+    # fork only on Linux: macOS lists it, but its system libraries are not fork-safe
+    forkable = sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods()
     in_process = all(str(j.get("link", "ctypes:")).startswith("ctypes:") for j in jobs)
     return "processes" if not scheduler and forkable and in_process else "dask"
 
