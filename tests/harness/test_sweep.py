@@ -137,6 +137,8 @@ def test_a_failure_is_summarised_with_its_replay(capsys) -> None:
     (["--noise", "loud"], "loud"),
     (["--out", "r.txt"], "--out"),
     (["--scheduler", "http://x"], "--scheduler"),
+    (["--scheduler", "tcp://127.0.0.1:9", "--engine", "processes"], "--engine"),
+    (["--engine", "threads"], "--engine"),
 ])
 def test_sweep_bad_input_one_line_exit_2_nothing_written(tmp_path, capsys, argv, needle) -> None:
     out = tmp_path / "r.csv"
