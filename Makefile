@@ -1,7 +1,7 @@
 # ffr - firmware-in-the-loop test harness for a fire-fighting robot.
 #   make run    set up, build, run the four-room missions (table + pictures)
 #   make test   set up, build, run every test
-#   make bench  real-time factor and per-tick costs, sweep throughput (missions/s)
+#   make bench  per-tick costs, real-time factor, sweep missions/min, start-up: each beside its goal
 #   make test-thorough  the property tests with the thorough hypothesis profile
 #   make stress  the wire and PIL missions again with every core busy: same traces, silent links
 #   make envelope  success rate per kind and level of sensor noise (docs/robustness.md)

@@ -24,6 +24,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+import numba as nb
 import numpy as np
 
 from sim_plant.errors import FfrInputError
@@ -165,3 +166,66 @@ class EventRunner:
                 v = float(hw[ch]) + ev.sigma * float(self.rng.standard_normal())
                 lo, hi = _LIMITS.get(ch, (-2.0**31, 2.0**31 - 1))
                 hw[ch] = int(min(max(math.floor(v + 0.5), lo), hi))
+
+
+# -- the compiled twin of EventRunner.apply (the lockstep kernel, harness/tick.py) --------
+
+# packed event columns; fault codes
+E_AT, E_DUR, E_CH, E_FAULT, E_VALUE, E_SIGMA, E_FRAC, E_LO, E_HI = range(9)
+N_E = 9
+F_DEAD, F_STUCK, F_NOISY, F_SLIP = range(4)
+# state columns per channel: held reading, previous raw encoder count, counts added so far
+EV_HELD, EV_PREV, EV_HAS_PREV, EV_EXTRA = range(4)
+N_EV_STATE = 4
+
+
+def pack_events(events: list[Event]) -> np.ndarray:
+    """(n, N_E) float64 table of the events for ``apply_events``."""
+    ev = np.zeros((len(events), N_E))
+    for k, e in enumerate(events):
+        lo, hi = _LIMITS.get(e.channel, (-2.0**31, 2.0**31 - 1))
+        ev[k] = (e.at_s, e.duration_s, e.channel, FAULTS.index(e.fault), e.value, e.sigma,
+                 e.fraction, lo, hi)
+    return ev
+
+
+@nb.njit(cache=True)
+def apply_events(t: float, hw: np.ndarray, ev: np.ndarray, state: np.ndarray, active: np.ndarray,
+                 rng: np.random.Generator) -> None:
+    """``EventRunner.apply`` on packed events: same arithmetic, same draws in the same order.
+
+    ``state`` is (N_CHANNELS, N_EV_STATE) zeros at the start, ``active`` (n,) zeros.
+    """
+    n = ev.shape[0]
+    for ch in (CH_ENC_L, CH_ENC_R):
+        raw = np.int64(hw[ch])
+        prev = np.int64(state[ch, EV_PREV]) if state[ch, EV_HAS_PREV] != 0.0 else raw
+        state[ch, EV_PREV] = raw
+        state[ch, EV_HAS_PREV] = 1.0
+        gain = 1.0
+        for k in range(n):
+            f = ev[k, E_FAULT]
+            if ev[k, E_CH] == ch and f != F_NOISY and ev[k, E_AT] <= t < ev[k, E_AT] + ev[k, E_DUR]:
+                gain = gain / (1.0 - ev[k, E_FRAC]) if f == F_SLIP else 0.0
+        if gain != 1.0:
+            state[ch, EV_EXTRA] = state[ch, EV_EXTRA] + (gain - 1.0) * (raw - prev)
+        # an encoder without extra counts reads raw either way (floor(0.0 + 0.5) == 0)
+        hw[ch] = raw + np.int64(math.floor(state[ch, EV_EXTRA] + 0.5))
+    for k in range(n):
+        ch = int(ev[k, E_CH])
+        f = ev[k, E_FAULT]
+        if ch in (CH_ENC_L, CH_ENC_R) and f != F_NOISY:
+            continue
+        on = ev[k, E_AT] <= t < ev[k, E_AT] + ev[k, E_DUR]
+        if on and active[k] == 0:
+            state[ch, EV_HELD] = hw[ch]
+        active[k] = 1 if on else 0
+        if not on:
+            continue
+        if f == F_STUCK:
+            hw[ch] = np.int32(state[ch, EV_HELD])
+        elif f == F_DEAD:
+            hw[ch] = np.int32(int(ev[k, E_VALUE]))
+        else:  # noisy
+            v = float(hw[ch]) + ev[k, E_SIGMA] * rng.standard_normal()
+            hw[ch] = np.int32(min(max(math.floor(v + 0.5), ev[k, E_LO]), ev[k, E_HI]))

@@ -6,9 +6,11 @@ applied to the plant, which integrates over the tick. The firmware never runs
 ahead of the plant; each inputs frame carries the tick time and a sequence
 number and gets exactly one outputs frame back.
 
-The per-tick work is a handful of compiled kernels (sensors, plant) and one
-ctypes call; packing the inputs and recording the trace are compiled too,
-because at ~15,000 ticks per mission every microsecond of Python shows.
+With the in-process ``ctypes:`` link the whole loop runs in one compiled call
+(``harness/tick.py``: ~2 us a tick instead of ~11); every other link, and
+``Mission.run(compiled=False)``, takes the Python loop below (``_python_loop``),
+one call per part per tick: the reference the compiled loop is tested against
+bit for bit (tests/harness/test_compiled_tick.py).
 """
 
 from __future__ import annotations
@@ -16,10 +18,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numba as nb
 import numpy as np
 
-from harness.events import EventRunner
+from harness.events import N_EV_STATE, EventRunner, pack_events
 from harness.firmware_abi import (
     FAIL_NAMES,
     INPUTS_DTYPE,
@@ -30,8 +31,20 @@ from harness.firmware_abi import (
 from harness.firmware_config import build_config
 from harness.links import FirmwareLink, open_link
 from harness.links.base import LinkError, new_inputs, new_outputs
+from harness.links.ctypes_link import CtypesLink
 from harness.scenario import Scenario
 from harness.scoring import MissionResult, ScoringRules, contest_score
+from harness.tick import (
+    END_CONTACT,
+    END_DONE,
+    END_FAILED,
+    END_FIND_LIMIT,
+    END_RETURN_LIMIT,
+    END_STUCK,
+    _pack,
+    _record,
+    mission_kernel,
+)
 from sim_plant.candle import Candle
 from sim_plant.plant import Plant
 from sim_plant.sensors import N_CHANNELS, SensorSuite, new_output
@@ -50,39 +63,6 @@ N_F = 4
 I_PWM_L, I_PWM_R, I_FAN, I_STATE, I_FLAGS, I_STEP, I_CONTACT = range(7)
 I_SENS = 7  # then the N_CHANNELS sensor channels
 N_I = I_SENS + N_CHANNELS
-
-
-@nb.njit(cache=True)
-def _pack(u32: np.ndarray, i32: np.ndarray, u16: np.ndarray, u8: np.ndarray,
-          t_ms: int, seq: int, hw: np.ndarray, start: int) -> None:
-    u32[0] = t_ms
-    u32[1] = seq
-    i32[2] = hw[8]
-    i32[3] = hw[9]
-    for i in range(5):
-        u16[8 + i] = hw[i]
-    u16[13] = hw[5]
-    u16[14] = hw[6]
-    u8[30] = hw[7]
-    u8[31] = start
-
-
-@nb.njit(cache=True)
-def _record(tf: np.ndarray, ti: np.ndarray, k: int, t: float, x: float, y: float, th: float,
-            o16: np.ndarray, o8: np.ndarray, hw: np.ndarray, contact: int) -> None:
-    tf[k, 0] = t
-    tf[k, 1] = x
-    tf[k, 2] = y
-    tf[k, 3] = th
-    ti[k, 0] = o16[2]
-    ti[k, 1] = o16[3]
-    ti[k, 2] = o8[8]
-    ti[k, 3] = o8[9]
-    ti[k, 4] = o8[13]
-    ti[k, 5] = o8[14]
-    ti[k, 6] = contact
-    for c in range(hw.shape[0]):
-        ti[k, 7 + c] = hw[c]
 
 
 @dataclass
@@ -126,7 +106,16 @@ class Mission:
             link = open_link(link)
         return cls(scn, link, rules or ScoringRules.load())
 
-    def run(self, record: bool = True) -> tuple[MissionResult, Trace]:
+    def run(self, record: bool = True, compiled: bool | None = None) -> tuple[MissionResult, Trace]:
+        """Run the mission to its end. ``compiled``: the whole loop in one numba call
+        (harness/tick.py); None = whenever the link is the in-process ``CtypesLink`` itself,
+        False = the Python loop, one call per part per tick (any link)."""
+        link = self.link
+        if compiled is None:
+            # exactly CtypesLink: a subclass may override step, which the kernel would bypass
+            compiled = type(link) is CtypesLink
+        elif compiled and not isinstance(link, CtypesLink):
+            raise ValueError(f"{link.url}: the compiled loop needs the in-process ctypes: link")
         scn = self.scenario
         tm = scn.timing
         period_ms = tm.firmware_period_ms
@@ -136,9 +125,7 @@ class Mission:
         candle = Candle(scn.candle[0], scn.candle[1], scn.robot, scn.arena)
         rng = np.random.default_rng(scn.seed)
         sensors = SensorSuite(scn.arena, scn.robot, candle, scn.noise, rng)
-        events = EventRunner(scn.events, rng) if scn.events else None
         cfg = build_config(scn.robot, scn.firmware, scn.source)
-        link = self.link
         counters0 = link.link_counters()
         link.reset(cfg)
 
@@ -148,9 +135,6 @@ class Mission:
         out_bytes = out.reshape(1).view(np.uint8)
         o16 = out_bytes.view(np.int16)
         hw = new_output()
-        fast = getattr(link, "step_bound", None)
-        if fast is not None:
-            link.bind(inp, out)  # type: ignore[attr-defined]
 
         limit_s = tm.find_limit_s + tm.return_limit_s
         max_ticks = int(math.ceil(limit_s / period)) + 2
@@ -158,6 +142,92 @@ class Mission:
         ti = np.zeros((max_ticks if record else 1, N_I), dtype=np.int32)
         start_tick = int(math.ceil(tm.start_delay_ms / period_ms))
 
+        outcome = ""
+        detail = ""
+        done_t: float | None = None
+        if compiled:
+            assert isinstance(link, CtypesLink)
+            n_sub = plant.steps_for(period)
+            cp, cs = candle.pack()
+            ev = pack_events(scn.events)
+            end, k, t = mission_kernel(
+                link.step_address, link.state_address, inp.ctypes.data, out.ctypes.data,
+                u32, i32, u16, in_bytes, o16, out_bytes, hw, tf, ti, record,
+                *sensors.kernel_args(), rng,
+                ev, np.zeros((N_CHANNELS, N_EV_STATE)), np.zeros(len(ev), dtype=np.int64),
+                *plant.kernel_args(), n_sub, cs, cp, period_ms, start_tick, max_ticks,
+                float(tm.find_limit_s), float(tm.return_limit_s), bool(scn.stop_on_contact),
+                ST_DONE, ST_FAILED)
+            link.steps += k
+            candle.unpack(cs)
+            plant.apply(int(o16[2]), int(o16[3]))
+            if end == END_DONE:
+                done_t = t
+            elif end == END_FAILED:
+                outcome = "failed"
+                detail = "firmware: " + FAIL_NAMES.get(int(out_bytes[15]), f"code {int(out_bytes[15])}")
+            elif end == END_CONTACT:
+                outcome, detail = "collision", "wall contact (stop_on_contact)"
+            elif end == END_STUCK:
+                outcome, detail = "collision", "pushed against a wall for 5 s"
+            elif end == END_FIND_LIMIT:
+                outcome, detail = "timeout", f"flame still burning after {tm.find_limit_s:g} s"
+            elif end == END_RETURN_LIMIT:
+                outcome, detail = "extinguished", f"not home {tm.return_limit_s:g} s after the flame went out"
+            else:
+                outcome, detail = "timeout", "time limit"
+        else:
+            k, t, done_t, outcome, detail = self._python_loop(
+                plant, candle, sensors, EventRunner(scn.events, rng) if scn.events else None,
+                inp, out, u32, i32, u16, in_bytes, o16, out_bytes, hw, tf, ti, record,
+                start_tick, max_ticks)
+
+        ext = candle.extinguished_at if not candle.lit else None
+        if outcome == "failed":
+            outcome = "extinguished" if ext is not None else "error"
+        if not outcome:
+            hx, hy = scn.arena.home_center
+            at_home = math.hypot(plant.x - hx, plant.y - hy) <= scn.arena.home_radius
+            if ext is not None and at_home:
+                outcome = "home"
+            elif ext is not None:
+                outcome, detail = "extinguished", "stopped outside the home circle"
+            else:
+                outcome, detail = "error", "firmware stopped with the flame still burning"
+        rooms = int(out_bytes[11])
+        # the candle's room counts as searched even when the robot never left it
+        rooms_searched = rooms + (1 if ext is not None else 0)
+        result = MissionResult(
+            outcome=outcome, room=scn.room, candle=scn.candle,
+            time_to_extinguish_s=ext,
+            total_time_s=done_t if outcome == "home" else None,
+            wall_contacts=plant.contacts, min_wall_clearance_m=plant.min_clearance,
+            path_length_m=plant.path_length, seed=scn.seed, rooms_searched=rooms_searched,
+            detail=detail, scenario=scn.name, link=link.url, sim_time_s=t,
+            final_pose=(plant.x, plant.y, plant.theta),
+            link_counters=(link.link_counters() - counters0).as_dict(),
+        )
+        result.score = contest_score(self.rules, outcome, ext, rooms_searched, plant.contacts)
+        n = k if record else 0
+        return result, Trace(tf[:n].copy(), ti[:n].copy())
+
+
+    def _python_loop(self, plant: Plant, candle: Candle, sensors: SensorSuite,
+                     events: EventRunner | None, inp: np.ndarray, out: np.ndarray, u32: np.ndarray,
+                     i32: np.ndarray, u16: np.ndarray, in_bytes: np.ndarray, o16: np.ndarray,
+                     out_bytes: np.ndarray, hw: np.ndarray, tf: np.ndarray, ti: np.ndarray,
+                     record: bool, start_tick: int, max_ticks: int,
+                     ) -> tuple[int, float, float | None, str, str]:
+        """One Python-level call per part per tick: the loop for the wire links, and the
+        reference the compiled loop is tested against."""
+        scn = self.scenario
+        tm = scn.timing
+        period_ms = tm.firmware_period_ms
+        period = period_ms / 1000.0
+        link = self.link
+        fast = getattr(link, "step_bound", None)
+        if fast is not None:
+            link.bind(inp, out)  # type: ignore[attr-defined]
         outcome = ""
         detail = ""
         done_t: float | None = None
@@ -216,43 +286,16 @@ class Mission:
             if k >= max_ticks:
                 outcome, detail = "timeout", "time limit"
                 break
-
-        ext = candle.extinguished_at if not candle.lit else None
-        if outcome == "failed":
-            outcome = "extinguished" if ext is not None else "error"
-        if not outcome:
-            hx, hy = scn.arena.home_center
-            at_home = math.hypot(plant.x - hx, plant.y - hy) <= scn.arena.home_radius
-            if ext is not None and at_home:
-                outcome = "home"
-            elif ext is not None:
-                outcome, detail = "extinguished", "stopped outside the home circle"
-            else:
-                outcome, detail = "error", "firmware stopped with the flame still burning"
-        rooms = int(out_bytes[11])
-        # the candle's room counts as searched even when the robot never left it
-        rooms_searched = rooms + (1 if ext is not None else 0)
-        result = MissionResult(
-            outcome=outcome, room=scn.room, candle=scn.candle,
-            time_to_extinguish_s=ext,
-            total_time_s=done_t if outcome == "home" else None,
-            wall_contacts=plant.contacts, min_wall_clearance_m=plant.min_clearance,
-            path_length_m=plant.path_length, seed=scn.seed, rooms_searched=rooms_searched,
-            detail=detail, scenario=scn.name, link=link.url, sim_time_s=t,
-            final_pose=(plant.x, plant.y, plant.theta),
-            link_counters=(link.link_counters() - counters0).as_dict(),
-        )
-        result.score = contest_score(self.rules, outcome, ext, rooms_searched, plant.contacts)
-        n = k if record else 0
-        return result, Trace(tf[:n].copy(), ti[:n].copy())
+        return k, t, done_t, outcome, detail
 
 
 def run_mission(scn: Scenario, link: FirmwareLink | str = "ctypes:", record: bool = True,
-                rules: ScoringRules | None = None) -> tuple[MissionResult, Trace]:
+                rules: ScoringRules | None = None, compiled: bool | None = None,
+                ) -> tuple[MissionResult, Trace]:
     own = isinstance(link, str)
     m = Mission.create(scn, link, rules)
     try:
-        return m.run(record=record)
+        return m.run(record=record, compiled=compiled)
     finally:
         if own:
             m.link.close()

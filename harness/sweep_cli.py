@@ -58,6 +58,9 @@ def add_sweep_parser(sub: Any) -> None:
     sp.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
                     help="run on this Dask cluster (default: a local one, one worker per core)")
     sp.add_argument("--workers", type=int, default=None, help="local workers (default: all cores)")
+    sp.add_argument("--engine", choices=("dask", "processes"), default=None,
+                    help="local runs: worker processes forked warm from this one (the default for "
+                         "ctypes: links) or a local Dask cluster; --scheduler always uses Dask")
     sp.add_argument("--out", default=None, metavar="FILE.csv|FILE.parquet", help="one row per mission")
     sp.add_argument("--plot", default=None, metavar="FILE.png", help="success and time over the arena and params")
     sp.add_argument("--json", default=None, metavar="FILE|-", help="the summary numbers as JSON")
@@ -83,6 +86,8 @@ def _check(args: argparse.Namespace) -> None:
         raise UsageError(f"--samples = {args.samples}: expected >= 1")
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers = {args.workers}: expected >= 1")
+    if args.scheduler and args.engine == "processes":
+        raise UsageError("--engine = 'processes': local only, not with --scheduler")
     if args.scheduler and not args.scheduler.startswith(("tcp://", "tls://", "inproc://")):
         raise UsageError(f"--scheduler = {args.scheduler!r}: expected tcp://HOST:PORT")
     for path, what in ((args.out, "--out"), (args.plot, "--plot")):
@@ -130,7 +135,8 @@ def run_sweep(args: argparse.Namespace) -> int:
         raise UsageError("the sweep has no missions (no legal candle position?)")
     print(f"sweep: {len(jobs)} missions on {args.scheduler or 'the local cores'}", flush=True)
     try:
-        rows, wall = sw.timed_execute(jobs, args.scheduler, args.workers, show_progress=not args.no_progress)
+        rows, wall = sw.timed_execute(jobs, args.scheduler, args.workers, show_progress=not args.no_progress,
+                                      engine=args.engine)
     except (OSError, TimeoutError) as exc:
         raise UsageError(f"--scheduler = {args.scheduler!r}: cannot reach the cluster ({exc})") from None
     text = sw.summary(rows, spec.params, wall)

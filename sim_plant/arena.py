@@ -7,9 +7,11 @@ bottom-left outer corner, x right, y up.
 
 from __future__ import annotations
 
+import copy
 import math
 import tomllib
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -256,9 +258,16 @@ def read_toml(path: str | Path) -> dict[str, Any]:
     except OSError as exc:
         raise FfrInputError(str(p), "(file)", str(p), exc.strerror or "cannot be read") from None
     try:
-        return tomllib.loads(text)
+        return copy.deepcopy(_parse_toml(text))
     except tomllib.TOMLDecodeError as exc:
         raise FfrInputError(str(p), "(syntax)", None, str(exc)) from None
+
+
+@lru_cache(maxsize=32)
+def _parse_toml(text: str) -> dict[str, Any]:
+    # Parsed once per content: a sweep reads the same noise profile and scoring
+    # files for every mission (~7 ms each time); read_toml hands out copies.
+    return tomllib.loads(text)
 
 
 def _polygon(r: _Reader, key: str) -> np.ndarray:

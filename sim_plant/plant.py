@@ -28,12 +28,14 @@ from sim_plant.collision import (
     released,
 )
 from sim_plant.drivetrain import (
+    P_RMAX,
     S_DRIVE_SIZE,
     S_LEFT,
     S_RIGHT,
     S_TH,
     S_X,
     S_Y,
+    arc_step,
     body_motion,
     build_params,
     pwm_to_voltage,
@@ -55,11 +57,35 @@ S_SIZE = S_DRIVE_SIZE + 5
 _CLEARANCE_CUTOFF = 1e3  # m, larger than any arena
 
 
+_FREE_MARGIN = 1e-6  # m, beyond rounding of the footprint corners
+
+
+@nb.njit(cache=True)
+def _free_distance(x: float, y: float, wall_bbox: np.ndarray) -> float:
+    """Chebyshev distance from (x, y) to the nearest wall bounding box."""
+    best = 1e300
+    for w in range(wall_bbox.shape[0]):
+        dx = max(wall_bbox[w, 0] - x, 0.0, x - wall_bbox[w, 2])
+        dy = max(wall_bbox[w, 1] - y, 0.0, y - wall_bbox[w, 3])
+        best = min(best, max(dx, dy))
+    return best
+
+
 @nb.njit(cache=True)
 def _advance(S: np.ndarray, P: np.ndarray, poly: np.ndarray, wall_polys: np.ndarray,
              wall_bbox: np.ndarray, pwm_l: int, pwm_r: int, n: int) -> None:
     el = pwm_to_voltage(pwm_l, P)
     er = pwm_to_voltage(pwm_r, P)
+    # Far from every wall the collision test cannot fire: the footprint lies within
+    # P_RMAX of the origin, which has moved at most ``moved`` (a chord is no longer
+    # than its arc) since the tick began, and no wall box is within ``free`` of it.
+    # Such steps skip the footprint test; what they compute is unchanged (limit_move
+    # would return the free arc step with fraction 1).
+    free = -1.0
+    if S[S_IN_CONTACT] == 0.0:
+        free = _free_distance(S[S_X], S[S_Y], wall_bbox) - P[P_RMAX] - _FREE_MARGIN
+    free0 = free
+    moved = 0.0
     for _ in range(n):
         dl = side_step(S, S_LEFT, el, P)
         dr = side_step(S, S_RIGHT, er, P)
@@ -68,9 +94,18 @@ def _advance(S: np.ndarray, P: np.ndarray, poly: np.ndarray, wall_polys: np.ndar
         y = S[S_Y]
         th = S[S_TH]
         S[S_STEPS] += 1.0
+        moved += abs(ds)
         if ds == 0.0 and dth == 0.0:
             blocked = False
+        elif moved < free:
+            nx, ny, nth = arc_step(x, y, th, ds, dth)
+            blocked = False
+            S[S_X] = nx
+            S[S_Y] = ny
+            S[S_TH] = wrap_angle(nth)
+            S[S_PATH] += abs(ds)
         else:
+            free = -1.0  # once near a wall, test every remaining step
             nx, ny, nth, frac = limit_move(poly, x, y, th, ds, dth, P, wall_polys, wall_bbox)
             blocked = frac < 1.0
             S[S_X] = nx
@@ -85,9 +120,12 @@ def _advance(S: np.ndarray, P: np.ndarray, poly: np.ndarray, wall_polys: np.ndar
         elif S[S_IN_CONTACT] != 0.0 and released(poly, S[S_X], S[S_Y], S[S_TH], P,
                                                   wall_polys, wall_bbox):
             S[S_IN_CONTACT] = 0.0
-    footprint_into(poly, S[S_X], S[S_Y], S[S_TH], P, 0.0)
     # Only walls nearer than the best so far can lower the minimum: use it as cut-off.
-    if S[S_MIN_CLEAR] > 0.0:
+    # When even the nearest wall box is farther than that (free0 - moved bounds the
+    # footprint's distance to every box from below), clearance() would skip every
+    # wall and return the cut-off unchanged: skip it.
+    if S[S_MIN_CLEAR] > 0.0 and free0 - moved <= S[S_MIN_CLEAR]:
+        footprint_into(poly, S[S_X], S[S_Y], S[S_TH], P, 0.0)
         S[S_MIN_CLEAR] = clearance(poly, wall_polys, wall_bbox, S[S_MIN_CLEAR])
 
 
@@ -144,12 +182,22 @@ class Plant:
         self._pwm_l = int(pwm_l)
         self._pwm_r = int(pwm_r)
 
-    def integrate(self, dt: float) -> None:
-        """Advance dt seconds, a whole number of plant steps."""
+    def steps_for(self, dt: float) -> int:
+        """Plant steps in dt seconds; dt must be a whole number of them."""
         n = round(dt / self.plant_dt)
         if n < 0 or abs(n * self.plant_dt - dt) > 1e-6 * self.plant_dt:
             raise ValueError(f"integrate({dt!r}): not a non-negative multiple of "
                              f"plant_dt = {self.plant_dt!r}")
+        return int(n)
+
+    def kernel_args(self) -> tuple[np.ndarray, ...]:
+        """(state, parameters, footprint scratch, walls, wall boxes) for ``_advance``,
+        which a compiled caller (harness/tick.py) runs on this plant's own state."""
+        return self._S, self._P, self._poly, self._walls, self._bbox
+
+    def integrate(self, dt: float) -> None:
+        """Advance dt seconds, a whole number of plant steps."""
+        n = self.steps_for(dt)
         if n:
             _advance(self._S, self._P, self._poly, self._walls, self._bbox,
                      self._pwm_l, self._pwm_r, n)

@@ -76,6 +76,9 @@ class CtypesLink(FirmwareLink):
         self._state = np.zeros((size + 7) // 8, dtype=np.uint64)
         self._state_ptr = self._state.ctypes.data
         self._step_fn = self.lib.ffr_step
+        # raw addresses for the compiled loop (harness/tick.py), which calls ffr_step itself
+        self.step_address = int(ctypes.cast(self._step_fn, ctypes.c_void_p).value or 0)
+        self.state_address = int(self._state_ptr)
         self._bound: tuple[int, int, int, int] | None = None
 
     def _reset_impl(self, config: np.ndarray) -> None:

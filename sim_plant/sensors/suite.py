@@ -65,16 +65,10 @@ def _round(v: float) -> float:
     return math.floor(v + 0.5)
 
 
-# Explicit signature: compiled once (and cached), ints passed for t or the pose are
-# converted instead of triggering a second compilation, and a wrong ``out``
-# dtype is refused.
-_KERNEL_SIG = ("boolean(float64, float64, float64, float64, float64, float64, boolean, int32[::1],"
-               " float64[:, ::1], float64[:, ::1], float64[::1], float64[::1], float64[:, ::1],"
-               " float64[:, :, ::1], float64[:, ::1], float64[::1], float64[::1], float64[::1],"
-               " int64[::1])")
-
-
-@nb.njit(_KERNEL_SIG, cache=True)
+# Compiled lazily (an explicit signature would load it at import, ~0.1 s of every
+# start-up, though the compiled mission loop never calls it from Python). ``sample``
+# converts t and the pose to float and checks ``out``, so there is one specialization.
+@nb.njit(cache=True)
 def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi_r: float,
                    lit: bool, out: np.ndarray, ir_cfg: np.ndarray, ir_state: np.ndarray,
                    cfg: np.ndarray, st: np.ndarray, edges: np.ndarray, wall_polys: np.ndarray,
@@ -242,8 +236,14 @@ class SensorSuite:
                 raise TypeError(f"out must be int32 of shape ({N_CHANNELS},), "
                                 f"got {out.dtype} {out.shape}")
             self._checked_out = out
-        if _sample_kernel(t, x, y, theta, phi_l, phi_r, self.candle.lit, out, *self._args):
+        if _sample_kernel(float(t), float(x), float(y), float(theta), float(phi_l), float(phi_r),
+                          bool(self.candle.lit), out, *self._args):
             self._stream.refill()
+
+    def kernel_args(self) -> tuple[np.ndarray, ...]:
+        """``_sample_kernel``'s arguments after ``out`` (state arrays shared with this suite),
+        for a compiled caller (harness/tick.py) that also does the refills."""
+        return self._args
 
     def reset(self) -> None:
         """Forget all sensor state (held ranger readings, slip, start time); noise stream kept."""

@@ -52,10 +52,23 @@ def test_local_dask_cluster_gives_the_serial_results(tmp_path) -> None:
     spec = sw.SweepSpec(rooms=(1, 2), candles="random", n_candles=2, seeds=(0, 1), noise="typical")
     jobs = sw.build_jobs(spec)
     done = []
-    rows = sw.execute(jobs, workers=2, progress=done.append)
+    rows = sw.execute(jobs, workers=2, progress=done.append, engine="dask")
     assert sum(done) == len(jobs) == len(rows) == 8
     assert rows == sw.run_local_serial(jobs)
     assert all(r["success"] for r in rows)
+
+
+def test_forked_local_processes_give_the_serial_results() -> None:
+    """The default local engine for ctypes: sweeps: workers forked warm from this process."""
+    spec = sw.SweepSpec(rooms=(1, 2), candles="random", n_candles=3, seeds=(0, 1), noise="typical")
+    jobs = sw.build_jobs(spec)
+    assert sw.pick_engine(jobs, None, None) == "processes"
+    assert sw.pick_engine(jobs, "tcp://127.0.0.1:8786", None) == "dask"
+    assert sw.pick_engine([j | {"link": "host-board:serial"} for j in jobs], None, None) == "dask"
+    done = []
+    rows = sw.execute(jobs, workers=2, progress=done.append)
+    assert sum(done) == len(jobs) == len(rows) == 12
+    assert rows == sw.run_local_serial(jobs)
 
 
 def test_scheduler_address_runs_on_that_cluster(tmp_path) -> None:
@@ -124,6 +137,8 @@ def test_a_failure_is_summarised_with_its_replay(capsys) -> None:
     (["--noise", "loud"], "loud"),
     (["--out", "r.txt"], "--out"),
     (["--scheduler", "http://x"], "--scheduler"),
+    (["--scheduler", "tcp://127.0.0.1:9", "--engine", "processes"], "--engine"),
+    (["--engine", "threads"], "--engine"),
 ])
 def test_sweep_bad_input_one_line_exit_2_nothing_written(tmp_path, capsys, argv, needle) -> None:
     out = tmp_path / "r.csv"
