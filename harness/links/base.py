@@ -61,7 +61,8 @@ class FirmwareLink(ABC):
     url: str = ""
 
     def __init__(self) -> None:
-        self.steps = 0
+        self.steps = 0  # since the last reset
+        self.earlier_steps = 0  # before it
         self.counters = LinkCounters()
 
     @property
@@ -77,6 +78,7 @@ class FirmwareLink(ABC):
         """(Re)start the firmware with a configuration (a CONFIG_DTYPE record)."""
         if config.dtype != CONFIG_DTYPE:
             raise TypeError("config must be a CONFIG_DTYPE record")
+        self.earlier_steps += self.steps
         self.steps = 0
         self._reset_impl(config)
 
