@@ -6,14 +6,19 @@ from __future__ import annotations
 import shutil
 import time
 
+import numpy as np
+
 from harness.firmware_config import build_config
 from harness.links import open_link
 from harness.links.base import LinkError, new_inputs, new_outputs
 from harness.loop import run_mission
 from harness.scenario import make_scenario
+from hil_bridge import codec
+from hil_bridge.codec import MsgType
 
 LINKS = ("ctypes:", "host-board:serial", "host-board:serial#transport=tcp", "host-board:can", "host-board:can#fd=1")
 EMULATED = "qemu:mps2-an386"  # the Cortex-M4 build, when QEMU is installed
+QEMU_GOAL_X = 20  # the emulated board's real-time factor goal (docs/pil.md)
 
 
 def round_trip_us(url: str, n: int = 3000) -> float:
@@ -31,6 +36,31 @@ def round_trip_us(url: str, n: int = 3000) -> float:
             inp["seq"], inp["t_ms"] = k, 10 * k
             link.step(inp, out)
         return (time.perf_counter() - t0) / n * 1e6
+
+
+def tick_anatomy(url: str, n: int = 2000) -> str:
+    """Where a tick's round trip goes over a serial link: from sending INPUTS to the first byte
+    of the answer (the board receiving the frame byte by byte, stepping, starting to answer),
+    then to the whole OUTPUTS frame (the answer arriving), medians over n ticks."""
+    scn = make_scenario(room=1)
+    with open_link(url) as link:
+        link.reset(build_config(scn.robot))
+        inp, out = new_inputs(), new_outputs()
+        inp["start"], inp["ir_mv"] = 1, (400, 400, 400, 400, 400)
+        first, rest, reads = [], [], []
+        for k in range(n):
+            inp["seq"], inp["t_ms"] = k, 10 * k
+            r0 = link.reads  # type: ignore[attr-defined]
+            link.step(inp, out)
+            done = time.perf_counter()
+            first.append(link.first_byte_at - link.sent_at)  # type: ignore[attr-defined]
+            rest.append(done - link.first_byte_at)  # type: ignore[attr-defined]
+            reads.append(link.reads - r0)  # type: ignore[attr-defined]
+    n_in = len(codec.frame_encode(codec.encode_msg(MsgType.INPUTS, inp)))
+    n_out = len(codec.frame_encode(codec.encode_msg(MsgType.OUTPUTS, out)))
+    f, r = float(np.median(first[200:])) * 1e6, float(np.median(rest[200:])) * 1e6
+    return (f"INPUTS {n_in} bytes sent -> first answer byte {f:.0f} us ({f / n_in:.1f} us a byte in); "
+            f"-> whole OUTPUTS ({n_out} bytes, read in {np.mean(reads[200:]):.1f} pieces) {r:.0f} us more")
 
 
 def bench_links() -> None:
@@ -52,6 +82,15 @@ def bench_links() -> None:
         print(f"  {url:32s} round trip {rt:7.1f} us/tick; mission {res.sim_time_s:5.1f} s simulated in "
               f"{wall:6.2f} s = {res.sim_time_s / wall:6.0f}x real time ({wall / ticks * 1e6:6.1f} us/tick), "
               f"{res.outcome}")
+        errors = {k: v for k, v in res.link_counters.items() if k not in ("sent", "received") and v}
+        print(f"  {'':32s} link counters: sent {res.link_counters['sent']}, received "
+              f"{res.link_counters['received']}, errors {errors or 'none'}")
+        if url.startswith(("qemu:", "host-board:serial")) and "#" not in url:
+            print(f"  {'':32s} tick anatomy: {tick_anatomy(url)}")
+        if url == EMULATED:
+            factor = res.sim_time_s / wall
+            print(f"  {'':32s} goal: room 4 over {EMULATED} at >= {QEMU_GOAL_X}x real time: "
+                  f"{'met' if factor >= QEMU_GOAL_X else 'NOT met'} ({factor:.1f}x); what limits it: docs/pil.md")
 
 
 if __name__ == "__main__":

@@ -34,6 +34,8 @@ class SerialLink(WireLink):
         self.ser: serial.SerialBase | None = None
         self._deframer = codec.Deframer()
         self._pending: list[bytes | DecodeError] = []
+        self.sent_at = self.first_byte_at = 0.0
+        self.reads = 0
         self.faults_tx: FaultInjector[bytes] = FaultInjector(opts.faults, flip_bit)
         # the way back draws from its own stream, so each direction's pattern is fixed by the seed
         self.faults_rx: FaultInjector[bytes] = FaultInjector(replace(opts.faults, seed=opts.faults.seed + 1), flip_bit)
@@ -60,6 +62,8 @@ class SerialLink(WireLink):
             self._write(f)
         for f in self.faults_tx.filter(codec.frame_encode(msg)):
             self._write(f)
+        self.sent_at = time.perf_counter()
+        self.first_byte_at = 0.0
 
     def _read_frames(self) -> None:
         assert self.ser is not None
@@ -71,6 +75,10 @@ class SerialLink(WireLink):
             raise LinkError(f"{self.url}: {self.side} gone {self._where()}: "
                             f"{gone or f'the line closed ({exc})'}; {self.counters}") from None
         if data:
+            # where a tick's time goes (make bench): request sent -> first answer byte -> whole answer
+            self.reads += 1
+            if not self.first_byte_at:
+                self.first_byte_at = time.perf_counter()
             for item in self._deframer.push(data):
                 if isinstance(item, DecodeError):
                     self._pending.append(item)
