@@ -19,6 +19,7 @@ with a summary and pictures.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import functools
 import io
@@ -29,7 +30,8 @@ import os
 import shlex
 import time
 from collections import Counter
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -221,7 +223,22 @@ def run_job(job: dict[str, Any]) -> dict[str, Any]:
 
 
 def run_chunk(jobs: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    return [run_job(j) for j in jobs]
+    rows = []
+    for j in jobs:
+        _test_hold(j["id"])
+        rows.append(run_job(j))
+    return rows
+
+
+def _test_hold(job_id: int) -> None:
+    """Tests only: with ``FFR_SWEEP_TEST_HOLD=PATH:ID`` in a worker's environment, missions from ID on wait
+    while PATH exists, so a test can interrupt a sweep at a known point instead of racing it."""
+    hold = os.environ.get("FFR_SWEEP_TEST_HOLD")
+    if not hold:
+        return
+    path, _, first = hold.rpartition(":")
+    while job_id >= int(first) and os.path.exists(path):
+        time.sleep(0.05)
 
 
 # -- the client side ------------------------------------------------------------
@@ -232,34 +249,77 @@ def chunked(jobs: Sequence[dict[str, Any]], n_workers: int, target: int = 16) ->
     return [list(jobs[i:i + size]) for i in range(0, len(jobs), size)]
 
 
-def execute(jobs: Sequence[dict[str, Any]], scheduler: str | None = None, workers: int | None = None,
-            progress: Callable[[int], None] | None = None) -> list[dict[str, Any]]:
-    """Run the jobs on a Dask cluster (``scheduler``) or a local one; rows in job order."""
-    from dask.distributed import Client, LocalCluster, as_completed
+class ClusterUnreachableError(OSError):
+    """No cluster at ``--scheduler`` (an OSError, as the connection errors it replaces)."""
+
+
+class ClusterLostError(Exception):
+    """The cluster went away mid-sweep: the scheduler's connection lost, or a mission that kills its workers."""
+
+
+@contextmanager
+def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator[Any]:
+    """A client of the cluster at ``scheduler``, or of a local one (127.0.0.1) started and stopped here."""
+    from dask.distributed import Client, LocalCluster
 
     cluster = None
     if scheduler:
-        client = Client(scheduler, timeout="5s")
+        try:
+            client = Client(scheduler, timeout="5s")
+        except (OSError, TimeoutError) as exc:
+            raise ClusterUnreachableError(str(exc)) from None
     else:
         n = workers or os.cpu_count() or 1
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
                                host="127.0.0.1", silence_logs=50)
         client = Client(cluster)
     try:
-        n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or 1))
-        chunks = chunked(jobs, n_workers)
-        futures = client.map(run_chunk, chunks, pure=False)
-        rows: list[dict[str, Any]] = []
+        yield client
+    finally:
+        # best effort and bounded: after Ctrl-C or a lost scheduler the rows are already on disk
+        with contextlib.suppress(Exception):
+            client.close(timeout=10)
+        if cluster is not None:
+            with contextlib.suppress(Exception):
+                cluster.close(timeout=20)
+
+
+def run_on(client: Any, jobs: Sequence[dict[str, Any]], workers: int | None = None,
+           progress: Callable[[int], None] | None = None,
+           sink: Callable[[list[dict[str, Any]]], None] | None = None) -> list[dict[str, Any]]:
+    """Run the jobs on the client's cluster; each chunk's rows go to ``sink`` as it finishes; rows in job order.
+
+    Raises ``ClusterLostError`` when the cluster goes away; every chunk that finished before has reached ``sink``.
+    """
+    from concurrent.futures import CancelledError
+
+    from dask.distributed import KilledWorker, as_completed
+    from distributed.comm.core import CommClosedError
+
+    n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or 1))
+    chunks = chunked(jobs, n_workers)
+    futures = client.map(run_chunk, chunks, pure=False)
+    rows: list[dict[str, Any]] = []
+    try:
         for fut in as_completed(futures):
             part = fut.result()
             rows += part
+            if sink:
+                sink(part)
             if progress:
                 progress(len(part))
-        return sorted(rows, key=lambda r: r["id"])
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+    except (CancelledError, KilledWorker, CommClosedError) as exc:
+        # FutureCancelledError says "scheduler-connection-lost" when the scheduler dies
+        raise ClusterLostError(str(exc).splitlines()[0] if str(exc) else type(exc).__name__) from None
+    return sorted(rows, key=lambda r: r["id"])
+
+
+def execute(jobs: Sequence[dict[str, Any]], scheduler: str | None = None, workers: int | None = None,
+            progress: Callable[[int], None] | None = None,
+            sink: Callable[[list[dict[str, Any]]], None] | None = None) -> list[dict[str, Any]]:
+    """Run the jobs on a Dask cluster (``scheduler``) or a local one; rows in job order."""
+    with dask_client(scheduler, workers) as client:
+        return run_on(client, jobs, workers, progress, sink)
 
 
 def run_local_serial(jobs: Iterable[dict[str, Any]]) -> list[dict[str, Any]]:
@@ -272,6 +332,11 @@ def run_local_serial(jobs: Iterable[dict[str, Any]]) -> list[dict[str, Any]]:
 def columns(rows: Sequence[dict[str, Any]]) -> list[str]:
     extra = sorted({k for r in rows for k in r} - set(ROW_FIELDS))
     return ROW_FIELDS[:-1] + extra + ["replay"]
+
+
+def header(params: Sequence[Param]) -> list[str]:
+    """The columns of a sweep's rows before any has run (``columns`` of its rows: one per swept key)."""
+    return ROW_FIELDS[:-1] + sorted({p.key for p in params} - set(ROW_FIELDS)) + ["replay"]
 
 
 def write_results(path: str | Path, rows: Sequence[dict[str, Any]]) -> None:
