@@ -28,6 +28,8 @@ import json
 import math
 import os
 import shlex
+import signal
+import threading
 import time
 from collections import Counter
 from collections.abc import Callable, Iterable, Iterator, Sequence
@@ -258,27 +260,45 @@ class ClusterLostError(Exception):
 
 
 @contextmanager
+def _sigint_held() -> Iterator[None]:
+    """Ctrl-C held back, not lost, while the local cluster starts: its worker processes inherit the blocked
+    signal, so a Ctrl-C reaching the whole process group never interrupts them half-started (tracebacks);
+    the sweep's own process gets it the moment the cluster is up."""
+    hold = hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread()
+    if hold:
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        if hold:
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
+@contextmanager
 def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator[Any]:
     """A client of the cluster at ``scheduler``, or of a local one (127.0.0.1) started and stopped here."""
     from dask.distributed import Client, LocalCluster
 
-    cluster = None
-    if scheduler:
-        try:
-            client = Client(scheduler, timeout="5s")
-        except (OSError, TimeoutError) as exc:
-            raise ClusterUnreachableError(str(exc)) from None
-    else:
-        n = workers or os.cpu_count() or 1
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
-                               host="127.0.0.1", silence_logs=50)
-        client = Client(cluster)
+    cluster = client = None
     try:
+        if scheduler:
+            try:
+                client = Client(scheduler, timeout="5s")
+            except (OSError, TimeoutError) as exc:
+                raise ClusterUnreachableError(str(exc)) from None
+        else:
+            n = workers or os.cpu_count() or 1
+            with _sigint_held():
+                # the preload makes workers the cluster restarts later ignore Ctrl-C too
+                cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                       host="127.0.0.1", silence_logs=50, preload=["harness.sweep_worker"])
+            client = Client(cluster)
         yield client
     finally:
         # best effort and bounded: after Ctrl-C or a lost scheduler the rows are already on disk
-        with contextlib.suppress(Exception):
-            client.close(timeout=10)
+        if client is not None:
+            with contextlib.suppress(Exception):
+                client.close(timeout=10)
         if cluster is not None:
             with contextlib.suppress(Exception):
                 cluster.close(timeout=20)
@@ -309,8 +329,9 @@ def run_on(client: Any, jobs: Sequence[dict[str, Any]], workers: int | None = No
             if progress:
                 progress(len(part))
     except (CancelledError, KilledWorker, CommClosedError) as exc:
-        # FutureCancelledError says "scheduler-connection-lost" when the scheduler dies
-        raise ClusterLostError(str(exc).splitlines()[0] if str(exc) else type(exc).__name__) from None
+        # a dead scheduler cancels every future with the reason "scheduler-connection-lost"
+        reason = getattr(exc, "reason", None) or (str(exc).splitlines() or [type(exc).__name__])[0]
+        raise ClusterLostError(reason) from None
     return sorted(rows, key=lambda r: r["id"])
 
 

@@ -187,10 +187,19 @@ def run_sweep(args: argparse.Namespace) -> int:
               f"{len(todo)} to run on {where}", flush=True)
     else:
         print(f"sweep: {len(jobs)} missions on {where}", flush=True)
-    # the client's reconnect attempts after a lost scheduler would bury the one-line report in tracebacks
-    logging.getLogger("distributed").setLevel(logging.CRITICAL)
+    # the client's reconnect attempts after a lost scheduler would bury the one-line report in tracebacks;
+    # distributed sets its loggers' levels one by one when imported, so each is quietened after that
+    import distributed  # noqa: F401
+    for name in list(logging.root.manager.loggerDict):
+        if name.partition(".")[0] == "distributed":
+            logging.getLogger(name).setLevel(logging.CRITICAL)
     rows: list[dict[str, Any]] = []
     stream: store.RowStream | None = None
+    ran = [0]  # missions back from the workers in this run (for the report when nothing is kept)
+
+    def progress(n: int) -> None:
+        ran[0] += n
+        bar.update(n)
     t0 = time.perf_counter()
     try:
         if todo:
@@ -203,16 +212,16 @@ def run_sweep(args: argparse.Namespace) -> int:
                         raise UsageError(f"--out = {args.out!r}: cannot write ({exc.strerror or exc})") from None
                 from tqdm import tqdm
                 with tqdm(total=len(todo), unit="mission", disable=args.no_progress, smoothing=0.1) as bar:
-                    rows = sw.run_on(client, todo, args.workers, progress=bar.update,
+                    rows = sw.run_on(client, todo, args.workers, progress=progress,
                                      sink=stream.write if stream else None)
     except sw.ClusterUnreachableError as exc:
         raise UsageError(f"--scheduler = {args.scheduler!r}: cannot reach the cluster ({exc})") from None
     except KeyboardInterrupt:
-        print(f"ffr: interrupted: {_lost_line(args, len(jobs), stream, len(kept) + len(rows))}", file=sys.stderr)
+        print(f"ffr: interrupted: {_lost_line(args, len(jobs), stream, len(kept), ran[0])}", file=sys.stderr)
         return EXIT_INTERRUPTED
     except sw.ClusterLostError as exc:
-        print(f"ffr: error: lost the Dask cluster ({exc}): {_lost_line(args, len(jobs), stream, len(kept))}",
-              file=sys.stderr)
+        print(f"ffr: error: lost the Dask cluster ({exc}): "
+              f"{_lost_line(args, len(jobs), stream, len(kept), ran[0])}", file=sys.stderr)
         return EXIT_CLUSTER_LOST
     finally:
         if stream is not None:
@@ -247,13 +256,15 @@ def run_sweep(args: argparse.Namespace) -> int:
 EXIT_INTERRUPTED, EXIT_CLUSTER_LOST = 130, 1
 
 
-def _lost_line(args: argparse.Namespace, total: int, stream: Any, finished: int) -> str:
+def _lost_line(args: argparse.Namespace, total: int, stream: Any, kept: int, ran: int) -> str:
     """How many missions finished and how many are missing, and how to get the rest (one line)."""
-    if stream is not None:
-        finished = stream.count
-        return (f"{finished} of {total} missions finished and are kept in {args.out}, {total - finished} "
+    if stream is not None or args.resume is not None:  # the file holds every finished mission
+        done = stream.count if stream is not None else kept
+        return (f"{done} of {total} missions finished and are kept in {args.out}, {total - done} "
                 f"missing; the same command with --resume {args.out} runs only those")
-    return f"{finished} of {total} missions finished, {total - finished} missing (no --out .csv: none kept)"
+    if args.out and args.out.endswith(".csv"):  # stopped while the cluster started: no file yet
+        return f"0 of {total} missions finished, {total} missing; {args.out} not written"
+    return f"{ran} of {total} missions finished, {total - ran} missing; none kept (no --out FILE.csv)"
 
 
 __all__ = ["FfrInputError", "add_sweep_parser", "run_sweep"]

@@ -130,13 +130,13 @@ def load_for_resume(path: str | Path, identity: dict[str, Any], replays: Sequenc
         return []
     if recs[0] != cols:
         raise ResumeError(f"--resume = {str(path)!r}: its columns are not this sweep's")
-    rows: list[dict[str, str]] = []
+    rows: dict[int, dict[str, str]] = {}
     for lineno, rec in enumerate(recs[1:], start=2):
         ok = len(rec) == len(cols) and rec[0].isdigit() and int(rec[0]) < len(replays)
         if not ok or rec[-1] != replays[int(rec[0])]:
             raise ResumeError(f"--resume = {str(path)!r}: line {lineno} is not a mission of this sweep")
-        rows.append(dict(zip(cols, rec, strict=True)))
-    return rows
+        rows.setdefault(int(rec[0]), dict(zip(cols, rec, strict=True)))  # a mission twice: the first row
+    return list(rows.values())
 
 
 def _difference(key: str, theirs: Any, ours: Any) -> str:
