@@ -13,8 +13,9 @@ re-runs lost tasks.
 Each worker keeps its arena, robot and firmware link between chunks (the
 in-process link is a shared library, loaded once per process); a mission is
 one ``run_mission`` without trace. Results come back as rows (``ROW_FIELDS``
-plus one column per swept parameter) and are written as CSV or Parquet,
-with a summary and pictures.
+plus one column per swept parameter), chunk by chunk as they finish (``run_on``'s
+``sink``: ``ffr sweep`` streams them to its CSV, ``harness.sweep_store``), and are
+written as CSV or Parquet, with a summary and pictures.
 """
 
 from __future__ import annotations

@@ -121,6 +121,7 @@ def test_ctrl_c_keeps_the_finished_rows_and_resume_completes_them(tmp_path, refe
     assert m, err
     finished = int(m[1])
     assert finished + int(m[2]) == N_MISSIONS
+    assert out.read_bytes().endswith(b"\n")  # whole rows only
     _check_kept(_records(out), reference, finished)
     assert main([*SWEEP, "--workers", "2", "--resume", str(out)]) == 0
     assert out.read_bytes() == reference
@@ -194,6 +195,7 @@ def test_a_lost_scheduler_keeps_the_finished_rows_and_resume_completes_them(tmp_
     m = re.fullmatch(rf"ffr: error: lost the Dask cluster \(scheduler-connection-lost\): (\d+) of "
                      rf"{N_MISSIONS} missions finished and are kept in .*, (\d+) missing; .*\n", err)
     assert m, err
+    assert out.read_bytes().endswith(b"\n")
     _check_kept(_records(out), reference, int(m[1]))
     _stop(workers)
     assert main([*SWEEP, "--workers", "2", "--resume", str(out)]) == 0
