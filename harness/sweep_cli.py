@@ -145,9 +145,19 @@ def sweep_identity(args: argparse.Namespace, jobs: list[dict[str, Any]]) -> dict
     }
 
 
-def run_sweep(args: argparse.Namespace) -> int:
+def _quiet_distributed_logs() -> None:
+    """The client's reconnect attempts after a lost scheduler would bury the one-line report in tracebacks;
+    distributed sets its loggers' levels one by one when imported, so each is quietened after that."""
     import logging
 
+    import distributed  # noqa: F401
+
+    for name in list(logging.root.manager.loggerDict):
+        if name.partition(".")[0] == "distributed":
+            logging.getLogger(name).setLevel(logging.CRITICAL)
+
+
+def run_sweep(args: argparse.Namespace) -> int:
     from harness import sweep as sw
     from harness import sweep_store as store
     from harness.atomic import write_json
@@ -187,31 +197,26 @@ def run_sweep(args: argparse.Namespace) -> int:
               f"{len(todo)} to run on {where}", flush=True)
     else:
         print(f"sweep: {len(jobs)} missions on {where}", flush=True)
-    # the client's reconnect attempts after a lost scheduler would bury the one-line report in tracebacks;
-    # distributed sets its loggers' levels one by one when imported, so each is quietened after that
-    import distributed  # noqa: F401
-    for name in list(logging.root.manager.loggerDict):
-        if name.partition(".")[0] == "distributed":
-            logging.getLogger(name).setLevel(logging.CRITICAL)
+    _quiet_distributed_logs()
     rows: list[dict[str, Any]] = []
     stream: store.RowStream | None = None
     ran = [0]  # missions back from the workers in this run (for the report when nothing is kept)
-
-    def progress(n: int) -> None:
-        ran[0] += n
-        bar.update(n)
     t0 = time.perf_counter()
     try:
         if todo:
             with sw.dask_client(args.scheduler, args.workers) as client:
                 if stream_csv:  # opened once the cluster is up: bad input or no cluster leaves no file
                     try:
-                        stream = (store.RowStream.append(args.out, cols, len(kept)) if args.resume is not None
+                        stream = (store.RowStream.append(args.out, cols) if args.resume is not None
                                   else store.RowStream.create(args.out, cols, identity))
                     except OSError as exc:
                         raise UsageError(f"--out = {args.out!r}: cannot write ({exc.strerror or exc})") from None
                 from tqdm import tqdm
                 with tqdm(total=len(todo), unit="mission", disable=args.no_progress, smoothing=0.1) as bar:
+                    def progress(n: int) -> None:
+                        ran[0] += n
+                        bar.update(n)
+
                     rows = sw.run_on(client, todo, args.workers, progress=progress,
                                      sink=stream.write if stream else None)
     except sw.ClusterUnreachableError as exc:
@@ -259,7 +264,7 @@ EXIT_INTERRUPTED, EXIT_CLUSTER_LOST = 130, 1
 def _lost_line(args: argparse.Namespace, total: int, stream: Any, kept: int, ran: int) -> str:
     """How many missions finished and how many are missing, and how to get the rest (one line)."""
     if stream is not None or args.resume is not None:  # the file holds every finished mission
-        done = stream.count if stream is not None else kept
+        done = stream.on_disk() if stream is not None else kept
         return (f"{done} of {total} missions finished and are kept in {args.out}, {total - done} "
                 f"missing; the same command with --resume {args.out} runs only those")
     if args.out and args.out.endswith(".csv"):  # stopped while the cluster started: no file yet

@@ -56,8 +56,8 @@ def _csv_text(records: Sequence[Sequence[Any]]) -> str:
 class RowStream:
     """Rows appended to a CSV as they arrive: whole rows, one write and a flush per batch."""
 
-    def __init__(self, path: Path, cols: list[str], fh: TextIO, count: int = 0) -> None:
-        self.path, self.cols, self._fh, self.count = path, cols, fh, count
+    def __init__(self, path: Path, cols: list[str], fh: TextIO) -> None:
+        self.path, self.cols, self._fh = path, cols, fh
 
     @classmethod
     def create(cls, path: str | Path, cols: list[str], identity: dict[str, Any]) -> RowStream:
@@ -71,7 +71,7 @@ class RowStream:
         return cls(p, cols, fh)
 
     @classmethod
-    def append(cls, path: str | Path, cols: list[str], count: int) -> RowStream:
+    def append(cls, path: str | Path, cols: list[str]) -> RowStream:
         """Continue a file ``load_for_resume`` accepted; a row cut short by a killed process is dropped."""
         p = Path(path)
         with open(p, "r+b") as fh:
@@ -82,16 +82,21 @@ class RowStream:
         if p.stat().st_size == 0:
             fh2.write(_csv_text([cols]))
             fh2.flush()
-        return cls(p, cols, fh2, count)
+        return cls(p, cols, fh2)
 
     def write(self, rows: Sequence[dict[str, Any]]) -> None:
         # one write per batch, so a killed process leaves whole rows (at most the last one cut, see append)
         self._fh.write(_csv_text([["" if r.get(c) is None else r.get(c) for c in self.cols] for r in rows]))
         self._fh.flush()
-        self.count += len(rows)
 
     def close(self) -> None:
         self._fh.close()
+
+    def on_disk(self) -> int:
+        """Missions whose rows are in the file, counted there, so the report after a Ctrl-C (which may land
+        between a batch's write and any count kept here) agrees with the file."""
+        self.close()  # flushes what was written before the interruption
+        return len({rec[0] for rec in _records(self.path)[1:]})
 
 
 def _records(path: Path) -> list[list[str]]:
