@@ -329,10 +329,14 @@ def run_on(client: Any, jobs: Sequence[dict[str, Any]], workers: int | None = No
                 sink(part)
             if progress:
                 progress(len(part))
-    except (CancelledError, KilledWorker, CommClosedError) as exc:
+    except CommClosedError:
+        # the scheduler died while a result was being fetched through it
+        raise ClusterLostError("connection closed") from None
+    except KilledWorker:
+        raise ClusterLostError("a chunk of missions killed the workers that ran it") from None
+    except CancelledError as exc:
         # a dead scheduler cancels every future with the reason "scheduler-connection-lost"
-        reason = getattr(exc, "reason", None) or (str(exc).splitlines() or [type(exc).__name__])[0]
-        raise ClusterLostError(reason) from None
+        raise ClusterLostError(getattr(exc, "reason", None) or "missions cancelled") from None
     return sorted(rows, key=lambda r: r["id"])
 
 
