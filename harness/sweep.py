@@ -16,12 +16,14 @@ re-runs lost tasks.
 Each worker keeps its arena, robot and firmware link between chunks (the
 in-process link is a shared library, loaded once per process); a mission is
 one ``run_mission`` without trace. Results come back as rows (``ROW_FIELDS``
-plus one column per swept parameter) and are written as CSV or Parquet,
-with a summary and pictures.
+plus one column per swept parameter), chunk by chunk as they finish (``run_on``'s
+``sink``: ``ffr sweep`` streams them to its CSV, ``harness.sweep_store``), and are
+written as CSV or Parquet, with a summary and pictures.
 """
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import functools
 import io
@@ -31,10 +33,13 @@ import math
 import multiprocessing
 import os
 import shlex
+import signal
 import sys
+import threading
 import time
 from collections import Counter
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -226,7 +231,22 @@ def run_job(job: dict[str, Any]) -> dict[str, Any]:
 
 
 def run_chunk(jobs: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    return [run_job(j) for j in jobs]
+    rows = []
+    for j in jobs:
+        _test_hold(j["id"])
+        rows.append(run_job(j))
+    return rows
+
+
+def _test_hold(job_id: int) -> None:
+    """Tests only: with ``FFR_SWEEP_TEST_HOLD=PATH:ID`` in a worker's environment, missions from ID on wait
+    while PATH exists, so a test can interrupt a sweep at a known point instead of racing it."""
+    hold = os.environ.get("FFR_SWEEP_TEST_HOLD")
+    if not hold:
+        return
+    path, _, first = hold.rpartition(":")
+    while job_id >= int(first) and os.path.exists(path):
+        time.sleep(0.05)
 
 
 # -- the client side ------------------------------------------------------------
@@ -237,11 +257,107 @@ def chunked(jobs: Sequence[dict[str, Any]], n_workers: int, target: int = 16) ->
     return [list(jobs[i:i + size]) for i in range(0, len(jobs), size)]
 
 
+class ClusterUnreachableError(OSError):
+    """No cluster at ``--scheduler`` (an OSError, as the connection errors it replaces)."""
+
+
+class ClusterLostError(Exception):
+    """The cluster went away mid-sweep: the scheduler's connection lost, or a mission that kills its workers."""
+
+
+@contextmanager
+def _sigint_held() -> Iterator[None]:
+    """Ctrl-C held back, not lost, while the local cluster starts: its worker processes inherit the blocked
+    signal, so a Ctrl-C reaching the whole process group never interrupts them half-started (tracebacks);
+    the sweep's own process gets it the moment the cluster is up."""
+    hold = hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread()
+    if hold:
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        if hold:
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
+@contextmanager
+def dask_client(scheduler: str | None = None, workers: int | None = None) -> Iterator[Any]:
+    """A client of the cluster at ``scheduler``, or of a local one (127.0.0.1) started and stopped here."""
+    from dask.distributed import Client, LocalCluster
+
+    cluster = client = None
+    try:
+        if scheduler:
+            try:
+                client = Client(scheduler, timeout="5s")
+            except (OSError, TimeoutError) as exc:
+                raise ClusterUnreachableError(str(exc)) from None
+        else:
+            n = workers or os.cpu_count() or 1
+            with _sigint_held():
+                # the preload makes workers the cluster restarts later ignore Ctrl-C too
+                cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                       host="127.0.0.1", silence_logs=50, preload=["harness.sweep_worker"])
+            client = Client(cluster)
+        yield client
+    finally:
+        # best effort and bounded: after Ctrl-C or a lost scheduler the rows are already on disk
+        if client is not None:
+            with contextlib.suppress(Exception):
+                client.close(timeout=10)
+        if cluster is not None:
+            with contextlib.suppress(Exception):
+                cluster.close(timeout=20)
+
+
+def run_on(client: Any, jobs: Sequence[dict[str, Any]], workers: int | None = None,
+           progress: Callable[[int], None] | None = None,
+           sink: Callable[[list[dict[str, Any]]], None] | None = None) -> list[dict[str, Any]]:
+    """Run the jobs on the client's cluster; each chunk's rows go to ``sink`` as it finishes; rows in job order.
+
+    Raises ``ClusterLostError`` when the cluster goes away; every chunk that finished before has reached ``sink``.
+    """
+    from concurrent.futures import CancelledError
+
+    from dask.distributed import KilledWorker, as_completed
+    from distributed.comm.core import CommClosedError
+
+    n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or 1))
+    chunks = chunked(jobs, n_workers)
+    futures = client.map(run_chunk, chunks, pure=False)
+    rows: list[dict[str, Any]] = []
+    try:
+        for fut in as_completed(futures):
+            part = fut.result()
+            rows += part
+            if sink:
+                sink(part)
+            if progress:
+                progress(len(part))
+    except CommClosedError:
+        # the scheduler died while a result was being fetched through it
+        raise ClusterLostError("connection closed") from None
+    except KilledWorker:
+        raise ClusterLostError("a chunk of missions killed the workers that ran it") from None
+    except CancelledError as exc:
+        # a dead scheduler cancels every future with the reason "scheduler-connection-lost"
+        raise ClusterLostError(getattr(exc, "reason", None) or "missions cancelled") from None
+    return sorted(rows, key=lambda r: r["id"])
+
+
 ENGINES = ("dask", "processes")
 
 
 def pick_engine(jobs: Sequence[dict[str, Any]], scheduler: str | None, engine: str | None) -> str:
-    """``dask`` for a scheduler or on request; else ``processes`` where it applies (below)."""
+    """``dask`` for a scheduler or on request; else ``processes`` where it applies.
+
+    ``processes`` (local worker processes forked from this warm process) is the
+    default for a local sweep of in-process (``ctypes:``) missions on a system
+    that can fork: a local Dask cluster spends ~5 s starting its workers,
+    warming each (imports, numba caches) and stopping them, which is as long as
+    600 missions take on two cores; forked workers start warm in milliseconds.
+    Wire links keep Dask (a forked worker would share the parent's open port).
+    """
     if engine is not None:
         if engine not in ENGINES:
             raise ValueError(f"engine = {engine!r}: expected one of {ENGINES}")
@@ -254,76 +370,55 @@ def pick_engine(jobs: Sequence[dict[str, Any]], scheduler: str | None, engine: s
     return "processes" if not scheduler and forkable and in_process else "dask"
 
 
-def execute(jobs: Sequence[dict[str, Any]], scheduler: str | None = None, workers: int | None = None,
-            progress: Callable[[int], None] | None = None, engine: str | None = None) -> list[dict[str, Any]]:
-    """Run the jobs; rows in job order, the same rows whichever engine ran them.
-
-    ``engine``: ``dask`` (the cluster at ``scheduler``, or a local one) or
-    ``processes`` (local worker processes forked from this warm process). None
-    picks ``processes`` for a local sweep of in-process (``ctypes:``) missions on
-    a system that can fork: a local Dask cluster spends ~5 s starting its
-    workers, warming each (imports, numba caches) and stopping them, which is
-    as long as 600 missions take on two cores; forked workers start warm in
-    milliseconds. Wire links keep Dask (a forked worker would share the
-    parent's open port).
-    """
-    if pick_engine(jobs, scheduler, engine) == "processes":
-        return _execute_forked(jobs, workers or os.cpu_count() or 1, progress)
-    return _execute_dask(jobs, scheduler, workers, progress)
+def _forked_worker_init() -> None:
+    # Ctrl-C reaches the whole process group: the sweep's own process keeps the finished rows
+    # and stops the pool, so its workers ignore it instead of printing tracebacks
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def _execute_forked(jobs: Sequence[dict[str, Any]], n: int,
-                    progress: Callable[[int], None] | None) -> list[dict[str, Any]]:
+def run_forked(jobs: Sequence[dict[str, Any]], n: int, progress: Callable[[int], None] | None = None,
+               sink: Callable[[list[dict[str, Any]]], None] | None = None) -> list[dict[str, Any]]:
+    """Run the jobs on ``n`` local processes forked from this one; each chunk's rows go to ``sink``
+    as it finishes; rows in job order. Ctrl-C stops the workers; what finished has reached ``sink``."""
     if not jobs:
         return []
+
+    def done(part: list[dict[str, Any]]) -> None:
+        rows.extend(part)
+        if sink:
+            sink(part)
+        if progress:
+            progress(len(part))
+
+    rows: list[dict[str, Any]] = []
     # Warm this process first (modules, numba caches, the firmware library): the
     # workers inherit it all at the fork. The first job's row is kept.
-    rows = run_chunk(list(jobs[:1]))
-    if progress:
-        progress(1)
+    done(run_chunk(list(jobs[:1])))
     rest = jobs[1:]
     if n <= 1 or len(rest) < 2:
-        for part in (run_chunk([j]) for j in rest):
-            rows += part
-            if progress:
-                progress(len(part))
+        for j in rest:
+            done(run_chunk([j]))
         return sorted(rows, key=lambda r: r["id"])
-    ctx = multiprocessing.get_context("fork")
-    with ctx.Pool(n) as pool:
+    pool = multiprocessing.get_context("fork").Pool(n, initializer=_forked_worker_init)
+    try:
         for part in pool.imap_unordered(run_chunk, chunked(rest, n)):
-            rows += part
-            if progress:
-                progress(len(part))
+            done(part)
+        pool.close()
+    finally:
+        pool.terminate()
+        pool.join()
     return sorted(rows, key=lambda r: r["id"])
 
 
-def _execute_dask(jobs: Sequence[dict[str, Any]], scheduler: str | None, workers: int | None,
-                  progress: Callable[[int], None] | None) -> list[dict[str, Any]]:
-    from dask.distributed import Client, LocalCluster, as_completed
-
-    cluster = None
-    if scheduler:
-        client = Client(scheduler, timeout="5s")
-    else:
-        n = workers or os.cpu_count() or 1
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
-                               host="127.0.0.1", silence_logs=50)
-        client = Client(cluster)
-    try:
-        n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or 1))
-        chunks = chunked(jobs, n_workers)
-        futures = client.map(run_chunk, chunks, pure=False)
-        rows: list[dict[str, Any]] = []
-        for fut in as_completed(futures):
-            part = fut.result()
-            rows += part
-            if progress:
-                progress(len(part))
-        return sorted(rows, key=lambda r: r["id"])
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+def execute(jobs: Sequence[dict[str, Any]], scheduler: str | None = None, workers: int | None = None,
+            progress: Callable[[int], None] | None = None,
+            sink: Callable[[list[dict[str, Any]]], None] | None = None,
+            engine: str | None = None) -> list[dict[str, Any]]:
+    """Run the jobs; rows in job order, the same rows whichever engine ran them (``pick_engine``)."""
+    if pick_engine(jobs, scheduler, engine) == "processes":
+        return run_forked(jobs, workers or os.cpu_count() or 1, progress, sink)
+    with dask_client(scheduler, workers) as client:
+        return run_on(client, jobs, workers, progress, sink)
 
 
 def run_local_serial(jobs: Iterable[dict[str, Any]]) -> list[dict[str, Any]]:
@@ -336,6 +431,11 @@ def run_local_serial(jobs: Iterable[dict[str, Any]]) -> list[dict[str, Any]]:
 def columns(rows: Sequence[dict[str, Any]]) -> list[str]:
     extra = sorted({k for r in rows for k in r} - set(ROW_FIELDS))
     return ROW_FIELDS[:-1] + extra + ["replay"]
+
+
+def header(params: Sequence[Param]) -> list[str]:
+    """The columns of a sweep's rows before any has run (``columns`` of its rows: one per swept key)."""
+    return ROW_FIELDS[:-1] + sorted({p.key for p in params} - set(ROW_FIELDS)) + ["replay"]
 
 
 def write_results(path: str | Path, rows: Sequence[dict[str, Any]]) -> None:

@@ -3,6 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import os
+import sys
+import time
+from pathlib import Path
 from typing import Any
 
 from sim_plant.errors import FfrInputError
@@ -61,7 +66,11 @@ def add_sweep_parser(sub: Any) -> None:
     sp.add_argument("--engine", choices=("dask", "processes"), default=None,
                     help="local runs: worker processes forked warm from this one (the default for "
                          "ctypes: links) or a local Dask cluster; --scheduler always uses Dask")
-    sp.add_argument("--out", default=None, metavar="FILE.csv|FILE.parquet", help="one row per mission")
+    sp.add_argument("--out", default=None, metavar="FILE.csv|FILE.parquet",
+                    help="one row per mission (CSV: written as missions finish)")
+    sp.add_argument("--resume", default=None, metavar="FILE.csv",
+                    help="run only the missions missing from FILE (an interrupted --out of the same sweep), "
+                         "appending them")
     sp.add_argument("--plot", default=None, metavar="FILE.png", help="success and time over the arena and params")
     sp.add_argument("--json", default=None, metavar="FILE|-", help="the summary numbers as JSON")
     sp.add_argument("--min-success", type=float, default=None, metavar="PCT",
@@ -118,12 +127,56 @@ def _check(args: argparse.Namespace) -> None:
                 override(robot, p.name, v, "--param")
 
 
+def sweep_identity(args: argparse.Namespace, jobs: list[dict[str, Any]]) -> dict[str, Any]:
+    """What decides a sweep's missions: its arguments (those that matter), the mission list and the files read.
+
+    Stored beside a streamed ``--out`` (``FILE.sweep.json``) and compared by ``--resume``; how the sweep runs
+    (``--scheduler``, ``--workers``, outputs, progress) is not part of it.
+    """
+    from harness import sweep_store as store
+
+    rnd_candles = args.candles == "random"
+    rnd_params = bool(args.param) and args.mode == "random"
+    files = {f: store.file_digest(f) for f in (args.arena, args.robot, args.noise) if f and Path(f).is_file()}
+    return {
+        "--rooms": list(args.rooms), "--candles": args.candles,
+        "--n-candles": args.n_candles if rnd_candles else None,
+        "--grid-step": args.grid_step if args.candles == "grid" else None,
+        "--seeds": list(args.seeds), "--noise": args.noise,
+        "--param": [[p.key, list(p.values), p.lo, p.hi] for p in args.param],
+        "--mode": args.mode if args.param else None, "--samples": args.samples if rnd_params else None,
+        "--sweep-seed": args.sweep_seed if rnd_candles or rnd_params else None,
+        "--set": [[g, k, v] for g, k, v in args.settings], "--link": args.link,
+        "--arena": args.arena, "--robot": args.robot, "files": files,
+        "missions": len(jobs), "jobs_sha256": store.jobs_digest(jobs),
+    }
+
+
+def _quiet_distributed_logs() -> None:
+    """The client's reconnect attempts after a lost scheduler would bury the one-line report in tracebacks;
+    distributed sets its loggers' levels one by one when imported, so each is quietened after that."""
+    import logging
+
+    import distributed  # noqa: F401
+
+    for name in list(logging.root.manager.loggerDict):
+        if name.partition(".")[0] == "distributed":
+            logging.getLogger(name).setLevel(logging.CRITICAL)
+
+
 def run_sweep(args: argparse.Namespace) -> int:
     from harness import sweep as sw
+    from harness import sweep_store as store
     from harness.atomic import write_json
     from harness.cli import UsageError
 
     _check(args)
+    if args.resume is not None:
+        if not args.resume.endswith(".csv"):
+            raise UsageError(f"--resume = {args.resume!r}: expected the .csv file of an interrupted sweep")
+        if args.out is not None and args.out != args.resume:
+            raise UsageError(f"--out = {args.out!r}: --resume appends to its own file; leave --out out")
+        args.out = args.resume
     spec = sw.SweepSpec(
         rooms=args.rooms, candles=args.candles, n_candles=args.n_candles, grid_step_m=args.grid_step,
         seeds=args.seeds, noise=args.noise, params=tuple(args.param), mode=args.mode, n_random=args.samples,
@@ -133,15 +186,72 @@ def run_sweep(args: argparse.Namespace) -> int:
     jobs = sw.build_jobs(spec)
     if not jobs:
         raise UsageError("the sweep has no missions (no legal candle position?)")
-    print(f"sweep: {len(jobs)} missions on {args.scheduler or 'the local cores'}", flush=True)
+    stream_csv = bool(args.out) and args.out.endswith(".csv")
+    cols = sw.header(spec.params)
+    identity = sweep_identity(args, jobs) if stream_csv else {}
+    kept: list[dict[str, Any]] = []
+    if args.resume is not None:
+        try:
+            kept = [store.typed_row(r) for r in
+                    store.load_for_resume(args.resume, identity, [sw.replay_command(j) for j in jobs], cols)]
+        except store.ResumeError as exc:
+            raise UsageError(str(exc)) from None
+    done_ids = {r["id"] for r in kept}
+    todo = [j for j in jobs if j["id"] not in done_ids]
+    where = args.scheduler or "the local cores"
+    if args.resume is not None:
+        print(f"sweep: {len(jobs)} missions, {len(done_ids)} already in {args.resume}, "
+              f"{len(todo)} to run on {where}", flush=True)
+    else:
+        print(f"sweep: {len(jobs)} missions on {where}", flush=True)
+    _quiet_distributed_logs()
+    rows: list[dict[str, Any]] = []
+    stream: store.RowStream | None = None
+    ran = [0]  # missions back from the workers in this run (for the report when nothing is kept)
+    t0 = time.perf_counter()
     try:
-        rows, wall = sw.timed_execute(jobs, args.scheduler, args.workers, show_progress=not args.no_progress,
-                                      engine=args.engine)
-    except (OSError, TimeoutError) as exc:
+        if todo:
+            engine = sw.pick_engine(todo, args.scheduler, args.engine)
+            with (sw.dask_client(args.scheduler, args.workers) if engine == "dask"
+                  else contextlib.nullcontext()) as client:
+                if stream_csv:  # opened once the cluster is up: bad input or no cluster leaves no file
+                    try:
+                        stream = (store.RowStream.append(args.out, cols) if args.resume is not None
+                                  else store.RowStream.create(args.out, cols, identity))
+                    except OSError as exc:
+                        raise UsageError(f"--out = {args.out!r}: cannot write ({exc.strerror or exc})") from None
+                from tqdm import tqdm
+                with tqdm(total=len(todo), unit="mission", disable=args.no_progress, smoothing=0.1) as bar:
+                    def progress(n: int) -> None:
+                        ran[0] += n
+                        bar.update(n)
+
+                    sink = stream.write if stream else None
+                    if client is None:  # forked local workers
+                        rows = sw.run_forked(todo, args.workers or os.cpu_count() or 1, progress, sink)
+                    else:
+                        rows = sw.run_on(client, todo, args.workers, progress=progress, sink=sink)
+    except sw.ClusterUnreachableError as exc:
         raise UsageError(f"--scheduler = {args.scheduler!r}: cannot reach the cluster ({exc})") from None
-    text = sw.summary(rows, spec.params, wall)
-    print(text)
-    if args.out:
+    except KeyboardInterrupt:
+        print(f"ffr: interrupted: {_lost_line(args, len(jobs), stream, len(kept), ran[0])}", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except sw.ClusterLostError as exc:
+        print(f"ffr: error: lost the Dask cluster ({exc}): "
+              f"{_lost_line(args, len(jobs), stream, len(kept), ran[0])}", file=sys.stderr)
+        return EXIT_CLUSTER_LOST
+    finally:
+        if stream is not None:
+            stream.close()
+    wall = time.perf_counter() - t0
+    rows = sorted(kept + rows, key=lambda r: r["id"])
+    # the throughput is that of the missions run now, not of those a resumed file already held
+    print(sw.summary(rows, spec.params, wall if not kept else None))
+    if kept and todo:
+        print(f"wall time {wall:.1f} s for the {len(todo)} missions run now: {len(todo) / wall:.1f} missions/s")
+    if stream_csv:
+        store.finish(args.out)
+    elif args.out:
         sw.write_results(args.out, rows)
     if args.plot:
         sw.plot(args.plot, rows, spec.params, args.arena)
@@ -149,13 +259,29 @@ def run_sweep(args: argparse.Namespace) -> int:
     rate = 100.0 * n_ok / len(rows)
     if args.json:
         payload = {"missions": len(rows), "succeeded": n_ok, "success_rate_pct": rate, "wall_s": wall,
-                   "missions_per_s": len(rows) / wall if wall > 0 else None,
+                   "missions_per_s": len(todo) / wall if todo and wall > 0 else None,
                    "failures": [{"outcome": r["outcome"], "detail": r["detail"], "replay": r["replay"]}
                                 for r in rows if not r["success"]]}
         write_json(args.json, payload)
     if args.min_success is not None and rate < args.min_success:
         return 1
     return 0
+
+
+# Ctrl-C: the shell's 128 + SIGINT. A cluster lost mid-sweep: 1, as for a sweep whose missions did not all
+# succeed (the missing ones did not), kept apart from 2 (bad input), which promises that nothing was written.
+EXIT_INTERRUPTED, EXIT_CLUSTER_LOST = 130, 1
+
+
+def _lost_line(args: argparse.Namespace, total: int, stream: Any, kept: int, ran: int) -> str:
+    """How many missions finished and how many are missing, and how to get the rest (one line)."""
+    if stream is not None or args.resume is not None:  # the file holds every finished mission
+        done = stream.on_disk() if stream is not None else kept
+        return (f"{done} of {total} missions finished and are kept in {args.out}, {total - done} "
+                f"missing; the same command with --resume {args.out} runs only those")
+    if args.out and args.out.endswith(".csv"):  # stopped while the cluster started: no file yet
+        return f"0 of {total} missions finished, {total} missing; {args.out} not written"
+    return f"{ran} of {total} missions finished, {total - ran} missing; none kept (no --out FILE.csv)"
 
 
 __all__ = ["FfrInputError", "add_sweep_parser", "run_sweep"]
