@@ -104,10 +104,11 @@ def _check_kept(recs: list[list[str]], reference: bytes, finished: int) -> None:
     assert all(rec in ref[1:] for rec in kept) and len({rec[0] for rec in kept}) == finished
 
 
-def test_ctrl_c_keeps_the_finished_rows_and_resume_completes_them(tmp_path, reference) -> None:
+@pytest.mark.parametrize("engine", ["processes", "dask"])
+def test_ctrl_c_keeps_the_finished_rows_and_resume_completes_them(tmp_path, reference, engine: str) -> None:
     out = tmp_path / "s.csv"
-    sweep = _spawn([sys.executable, "-m", "harness", *SWEEP, "--workers", "2", "--out", str(out)],
-                   _held_env(tmp_path / "hold"))
+    sweep = _spawn([sys.executable, "-m", "harness", *SWEEP, "--workers", "2", "--engine", engine,
+                    "--out", str(out)], _held_env(tmp_path / "hold"))
     try:
         _wait_rows(out, 1, sweep)
         os.killpg(sweep.pid, signal.SIGINT)  # the whole group, as Ctrl-C in a terminal
