@@ -119,11 +119,22 @@ $(BUILD)/arm/mps2-an386-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(MPS2_SRC
 	$(ARM_CC) $(ARM_CFLAGS) -I$(MPS2_DIR) $(MPS2_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(MPS2_SRCS) $(MPS2_DIR)/main.c
 	@$(ARM_SIZE) $@ | awk 'NR==2 { printf "mps2-an386 board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
 
+# STM32F405 (Cortex-M4F) on QEMU's netduinoplus2 (--link qemu:netduinoplus2).
+F405_DIR := firmware/boards/netduinoplus2
+F405_SRCS := $(F405_DIR)/startup.c $(F405_DIR)/uart_stm32.c $(F405_DIR)/main.c
+F405_LDFLAGS := -T $(F405_DIR)/stm32f405.ld -nostartfiles -Wl,--gc-sections --specs=nano.specs --specs=nosys.specs
+
+$(BUILD)/arm/netduinoplus2-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(F405_SRCS) $(F405_DIR)/*.h $(F405_DIR)/*.ld Makefile
+	@mkdir -p $(dir $@)
+	$(ARM_CC) $(ARM_CFLAGS) -I$(F405_DIR) $(F405_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(F405_SRCS)
+	@$(ARM_SIZE) $@ | awk 'NR==2 { printf "netduinoplus2 board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
+
 $(BUILD)/host/ffr_selftest: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) firmware/boards/host_selftest/main.c Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(CSTD) -O2 -Ifirmware/boards/common -o $@ $(FW_SRCS) $(BOARD_COMMON) firmware/boards/host_selftest/main.c
 
-firmware-boards: $(BUILD)/arm/mps2-an386-selftest.elf $(BUILD)/arm/mps2-an386-board.elf $(BUILD)/host/ffr_selftest
+firmware-boards: $(BUILD)/arm/mps2-an386-selftest.elf $(BUILD)/arm/mps2-an386-board.elf $(BUILD)/host/ffr_selftest \
+	$(BUILD)/arm/netduinoplus2-board.elf
 
 # Host and Cortex-M4 (on QEMU) step the same synthetic mission: same checksum?
 QEMU ?= qemu-system-arm
