@@ -129,12 +129,23 @@ $(BUILD)/arm/netduinoplus2-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(F405_
 	$(ARM_CC) $(ARM_CFLAGS) -I$(F405_DIR) $(F405_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(F405_SRCS)
 	@$(ARM_SIZE) $@ | awk 'NR==2 { printf "netduinoplus2 board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
 
+# nRF51822 (Cortex-M0, no FPU: soft float from libgcc) on QEMU's microbit (--link qemu:microbit).
+MICROBIT_DIR := firmware/boards/microbit
+MICROBIT_SRCS := $(MICROBIT_DIR)/startup.c $(MICROBIT_DIR)/uart_nrf51.c $(MICROBIT_DIR)/main.c
+M0_CFLAGS := $(CSTD) -Os -mcpu=cortex-m0 -mthumb -mfloat-abi=soft -ffunction-sections -fdata-sections
+MICROBIT_LDFLAGS := -T $(MICROBIT_DIR)/nrf51822.ld -nostartfiles -Wl,--gc-sections --specs=nano.specs --specs=nosys.specs
+
+$(BUILD)/arm/microbit-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(MICROBIT_SRCS) $(MICROBIT_DIR)/*.h $(MICROBIT_DIR)/*.ld Makefile
+	@mkdir -p $(dir $@)
+	$(ARM_CC) $(M0_CFLAGS) -I$(MICROBIT_DIR) $(MICROBIT_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(MICROBIT_SRCS)
+	@$(ARM_SIZE) $@ | awk 'NR==2 { printf "microbit board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
+
 $(BUILD)/host/ffr_selftest: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) firmware/boards/host_selftest/main.c Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(CSTD) -O2 -Ifirmware/boards/common -o $@ $(FW_SRCS) $(BOARD_COMMON) firmware/boards/host_selftest/main.c
 
 firmware-boards: $(BUILD)/arm/mps2-an386-selftest.elf $(BUILD)/arm/mps2-an386-board.elf $(BUILD)/host/ffr_selftest \
-	$(BUILD)/arm/netduinoplus2-board.elf
+	$(BUILD)/arm/netduinoplus2-board.elf $(BUILD)/arm/microbit-board.elf
 
 # Host and Cortex-M4 (on QEMU) step the same synthetic mission: same checksum?
 QEMU ?= qemu-system-arm
