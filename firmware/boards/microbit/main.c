@@ -17,6 +17,12 @@
 #include "ffr_link.h"
 
 #define PROFILE_EVERY 250u
+/* 1: log the profile by semihosting (QEMU -semihosting, or a probe serving it:
+ * without one, the bkpt would fault). The image for a bare micro:bit is built
+ * with 0 (make build/arm/microbit-hw.elf). */
+#ifndef BOARD_PROFILE_LOG
+#define BOARD_PROFILE_LOG 1
+#endif
 
 typedef struct {
     ffr_board_link_t link;
@@ -132,7 +138,7 @@ int main(void)
             send(b, rlen);
         }
         send(b, ffr_board_link_poll(&b->link, board_millis(), b->reply, sizeof(b->reply)));
-        if (b->link.prof_steps - reported >= PROFILE_EVERY) {
+        if (BOARD_PROFILE_LOG && b->link.prof_steps - reported >= PROFILE_EVERY) {
             reported = b->link.prof_steps;
             report_profile(&b->link);
         }
