@@ -59,11 +59,13 @@ def _elf(name: str) -> Path:
 MACHINES = {
     # CMSDK timer 0 on the 25 MHz clock: 40 ns, 40 instructions a count
     "mps2-an386": Machine(_elf("mps2-an386"), 40.0, "serial1", 25_000_000, 1.25),
-    # TIM2, prescaler 1: QEMU clocks the STM32F2xx/F4xx timers at 1 GHz, one instruction a count
+    # TIM2, PSC 0: QEMU clocks the STM32F2xx/F4xx timers at 1 GHz, one instruction a count
     "netduinoplus2": Machine(_elf("netduinoplus2"), 1.0, "serial1", 168_000_000, 1.25),
     # TIMER0 at 16 MHz: 62.5 ns, 62.5 instructions a count; one UART, so the profile goes by semihosting
     "microbit": Machine(_elf("microbit"), 62.5, "semihosting", 16_000_000, 1.5),
 }
+
+
 @dataclass(frozen=True)
 class StepProfile:
     steps: int
