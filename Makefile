@@ -207,7 +207,7 @@ run: setup firmware-host
 bench: setup firmware-host
 	$(PY) -m harness.bench
 	@if command -v $(ARM_CC) >/dev/null && command -v $(QEMU) >/dev/null; then \
-		echo "Cortex-M4 (QEMU mps2-an386, -icount): ffr_step instructions, budget 20000:"; \
+		echo "self-test ffr_step instructions (QEMU -icount): mps2-an386 Cortex-M4F (budget 20000), then microbit Cortex-M0:"; \
 		$(MAKE) -s selftest | grep ffr-profile; \
 		$(MAKE) -s firmware-boards >/dev/null; \
 		$(PY) -m hil_bridge.board_bench; \
