@@ -22,7 +22,11 @@ import pytest
 
 from harness.b2b import back_to_back
 from harness.links import LinkError, open_link
+from harness.loop import run_mission
 from harness.scenario import make_scenario
+from hil_bridge import codec
+from hil_bridge.codec import MsgType
+from hil_bridge.errors import ErrCode
 
 REPO = Path(__file__).resolve().parents[2]
 BOARDS = ["mps2-an386", "netduinoplus2", "microbit"]
@@ -75,6 +79,24 @@ def test_mission_on_the_emulated_board_equals_the_host_build(room: int, machine:
     if machine != "microbit":
         assert WORST_INSN[machine] < BUDGET_INSN
     assert pid not in _qemu_pids(machine)  # QEMU is gone
+
+
+@pytest.mark.parametrize("machine", BOARDS)
+def test_board_watchdog_counts_milliseconds(machine: str) -> None:
+    """The board's millisecond clock (SysTick, or TIMER1 on the nRF51) runs: the link watchdog trips."""
+    scn = make_scenario(room=1)  # the start of a mission, as tests/bridge's short_scenario
+    scn.timing.find_limit_s = 2.0
+    scn.timing.return_limit_s = 1.0
+    with open_link(f"qemu:{machine}#watchdog_ms=100") as link:
+        res, trace = run_mission(scn, link)
+        assert tuple(trace.actuators[-1, :2]) != (0, 0)  # driving when the inputs stop
+        assert int(link.info["watchdog_ms"]) == 100  # type: ignore[attr-defined]
+        time.sleep(0.5)  # QEMU's virtual clock follows the host's while the board sleeps
+        report = link._recv_msg(2.0)  # type: ignore[attr-defined]
+        assert report is not None
+        t, rec = codec.decode_msg(report)
+        assert t == MsgType.ERROR and int(rec["code"]) == ErrCode.WATCHDOG
+        assert int(rec["seq"]) == len(trace.i) - 1
 
 
 def test_unknown_machine_is_a_clear_error() -> None:
