@@ -5,7 +5,7 @@
 #   make test-thorough  the property tests with the thorough hypothesis profile
 #   make stress  the wire and PIL missions again with every core busy: same traces, silent links
 #   make envelope  success rate per kind and level of sensor noise (docs/robustness.md)
-#   make firmware  host library + Cortex-M4 build (flash/RAM printed)
+#   make firmware  host library + board builds: mps2-an386, netduinoplus2, microbit (flash/RAM printed)
 
 PYTHON ?= python3
 VENV   := .venv
@@ -123,20 +123,56 @@ $(BUILD)/arm/mps2-an386-selftest.elf: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) $(MP
 $(BUILD)/arm/mps2-an386-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(MPS2_SRCS) $(MPS2_DIR)/main.c $(MPS2_DIR)/*.h $(MPS2_DIR)/*.ld Makefile
 	@mkdir -p $(dir $@)
 	$(ARM_CC) $(ARM_CFLAGS) -I$(MPS2_DIR) $(MPS2_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(MPS2_SRCS) $(MPS2_DIR)/main.c
+	@$(ARM_SIZE) $@ | awk 'NR==2 { printf "mps2-an386 board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
+
+# STM32F405 (Cortex-M4F) on QEMU's netduinoplus2 (--link qemu:netduinoplus2).
+F405_DIR := firmware/boards/netduinoplus2
+F405_SRCS := $(F405_DIR)/startup.c $(F405_DIR)/uart_stm32.c $(F405_DIR)/main.c
+F405_LDFLAGS := -T $(F405_DIR)/stm32f405.ld -nostartfiles -Wl,--gc-sections --specs=nano.specs --specs=nosys.specs
+
+$(BUILD)/arm/netduinoplus2-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(F405_SRCS) $(F405_DIR)/*.h $(F405_DIR)/*.ld Makefile
+	@mkdir -p $(dir $@)
+	$(ARM_CC) $(ARM_CFLAGS) -I$(F405_DIR) $(F405_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(F405_SRCS)
+	@$(ARM_SIZE) $@ | awk 'NR==2 { printf "netduinoplus2 board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
+
+# nRF51822 (Cortex-M0, no FPU: soft float from libgcc) on QEMU's microbit (--link qemu:microbit).
+MICROBIT_DIR := firmware/boards/microbit
+MICROBIT_SRCS := $(MICROBIT_DIR)/startup.c $(MICROBIT_DIR)/uart_nrf51.c $(MICROBIT_DIR)/main.c
+M0_CFLAGS := $(CSTD) -Os -mcpu=cortex-m0 -mthumb -mfloat-abi=soft -ffunction-sections -fdata-sections
+MICROBIT_LDFLAGS := -T $(MICROBIT_DIR)/nrf51822.ld -nostartfiles -Wl,--gc-sections --specs=nano.specs --specs=nosys.specs
+
+$(BUILD)/arm/microbit-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(MICROBIT_SRCS) $(MICROBIT_DIR)/*.h $(MICROBIT_DIR)/*.ld Makefile
+	@mkdir -p $(dir $@)
+	$(ARM_CC) $(M0_CFLAGS) -I$(MICROBIT_DIR) $(MICROBIT_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(MICROBIT_SRCS)
+	@$(ARM_SIZE) $@ | awk 'NR==2 { printf "microbit board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
+
+$(BUILD)/arm/microbit-selftest.elf: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) $(MICROBIT_DIR)/startup.c $(MICROBIT_DIR)/uart_nrf51.c $(MICROBIT_DIR)/selftest_main.c $(MICROBIT_DIR)/*.h $(MICROBIT_DIR)/*.ld Makefile
+	@mkdir -p $(dir $@)
+	$(ARM_CC) $(M0_CFLAGS) -I$(MICROBIT_DIR) -Ifirmware/boards/common $(MICROBIT_LDFLAGS) -o $@ \
+		$(FW_SRCS) $(BOARD_COMMON) $(MICROBIT_DIR)/startup.c $(MICROBIT_DIR)/uart_nrf51.c $(MICROBIT_DIR)/selftest_main.c
+
+# The same for a micro:bit without a debugger: no semihosting (it would fault), so no profile line.
+$(BUILD)/arm/microbit-hw.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(MICROBIT_SRCS) $(MICROBIT_DIR)/*.h $(MICROBIT_DIR)/*.ld Makefile
+	@mkdir -p $(dir $@)
+	$(ARM_CC) $(M0_CFLAGS) -DBOARD_PROFILE_LOG=0 -I$(MICROBIT_DIR) $(MICROBIT_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(MICROBIT_SRCS)
 
 $(BUILD)/host/ffr_selftest: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) firmware/boards/host_selftest/main.c Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(CSTD) -O2 -Ifirmware/boards/common -o $@ $(FW_SRCS) $(BOARD_COMMON) firmware/boards/host_selftest/main.c
 
-firmware-boards: $(BUILD)/arm/mps2-an386-selftest.elf $(BUILD)/arm/mps2-an386-board.elf $(BUILD)/host/ffr_selftest
-	@$(ARM_SIZE) $(BUILD)/arm/mps2-an386-board.elf | awk 'NR==2 { printf "mps2-an386 board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
+firmware-boards: $(BUILD)/arm/mps2-an386-selftest.elf $(BUILD)/arm/mps2-an386-board.elf $(BUILD)/host/ffr_selftest \
+	$(BUILD)/arm/netduinoplus2-board.elf $(BUILD)/arm/microbit-board.elf $(BUILD)/arm/microbit-selftest.elf
 
-# Host and Cortex-M4 (on QEMU) step the same synthetic mission: same checksum?
+# Host, Cortex-M4F (mps2-an386) and Cortex-M0 soft float (microbit), both on QEMU, step the same
+# synthetic mission: same checksum?
 QEMU ?= qemu-system-arm
 selftest: firmware-boards
 	@$(BUILD)/host/ffr_selftest
 	@timeout 60 $(QEMU) -M mps2-an386 -nographic -monitor none -serial stdio -semihosting \
 		-icount shift=0 -kernel $(BUILD)/arm/mps2-an386-selftest.elf | grep ffr-
+	@timeout 300 $(QEMU) -M microbit -nographic -monitor none -serial none -icount shift=0 \
+		-chardev stdio,id=out -semihosting-config enable=on,target=native,chardev=out \
+		-kernel $(BUILD)/arm/microbit-selftest.elf | grep ffr-
 
 # ---- Python ----------------------------------------------------------------
 lint: setup
@@ -172,13 +208,18 @@ run: setup firmware-host
 # Budget for ffr_step on the target: 20,000 instructions (an 84 MHz Cortex-M4 at
 # ~1.5 cycles per instruction spends 0.36 ms of its 10 ms tick on navigation).
 # The firmware's own bound on its worst tick: 5,000 instructions (docs/pil.md).
+# Then every board on QEMU (hil_bridge/board_bench.py): rooms 1 and 4, identical with the host
+# build?, ffr_step mean and worst instructions, and the load at the chip's clock (168 MHz F405 and
+# 25 MHz mps2 at an assumed 1.25 cycles/instruction, 16 MHz nRF51 at 1.5; docs/boards.md).
 bench: setup firmware-host
 	@if command -v $(ARM_CC) >/dev/null && command -v $(QEMU) >/dev/null; then $(MAKE) -s firmware-boards >/dev/null; fi
 	$(PY) -m harness.bench
 	@if command -v $(ARM_CC) >/dev/null && command -v $(QEMU) >/dev/null; then \
-		echo "Cortex-M4 (QEMU mps2-an386, -icount): ffr_step instructions, goal: worst <= 5000 (budget 20000):"; \
+		echo "self-test ffr_step instructions (QEMU -icount): mps2-an386 Cortex-M4F (goal: worst <= 5000, budget 20000), then microbit Cortex-M0:"; \
 		$(MAKE) -s selftest | grep ffr-profile; \
+		echo "mps2-an386, the four rooms (goal: worst <= 5000):"; \
 		for r in 1 2 3 4; do $(VENV)/bin/ffr b2b --room $$r | sed -n "1s/^/  /p;3p"; done; \
+		$(PY) -m hil_bridge.board_bench; \
 	else echo "Cortex-M4 profile skipped: needs $(ARM_CC) and $(QEMU)"; fi
 
 clean:

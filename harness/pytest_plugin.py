@@ -46,7 +46,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
     g = parser.getgroup("ffr", "ffr firmware-in-the-loop missions")
     g.addoption("--ffr-link", "--link", dest="ffr_link", default="ctypes:", metavar="URL",
                 help="firmware link URL for every mission (default ctypes:), e.g. host-board:serial, "
-                     "host-board:can, qemu:mps2-an386, serial:/dev/ttyACM0, can:socketcan:can0")
+                     "host-board:can, qemu:mps2-an386, qemu:netduinoplus2, qemu:microbit, serial:/dev/ttyACM0, "
+                     "can:socketcan:can0")
     g.addoption("--ffr-seed", type=int, default=None, metavar="N", help="seed for every mission (default: the test's)")
     g.addoption("--ffr-noise", default=None, metavar="PROFILE",
                 help="noise profile for every mission (none, typical, datasheet, harsh, FILE.toml)")

@@ -1,17 +1,22 @@
-"""``qemu:<machine>``: the Cortex-M4 build of the firmware on an emulated board.
+"""``qemu:<machine>``: a board build of the firmware on an emulated board.
 
-``qemu:mps2-an386`` starts ``qemu-system-arm -M mps2-an386`` with the board
-image (``build/arm/mps2-an386-board.elf``: firmware, codec and board link
-behind the CMSDK UART), connects the serial link to its UART0 through a
-loopback socket, and runs the mission exactly as over a real serial port.
+``qemu:mps2-an386`` (Cortex-M4F), ``qemu:netduinoplus2`` (STM32F405,
+Cortex-M4F) and ``qemu:microbit`` (nRF51822, Cortex-M0, soft float) start
+``qemu-system-arm -M <machine>`` with the board image
+(``build/arm/<machine>-board.elf``: firmware, codec and board link behind
+the board's UART), connect the serial link to that UART through a loopback
+socket, and run the mission exactly as over a real serial port.
 
 QEMU runs with ``-icount shift=0``: every guest instruction is one
-nanosecond of virtual time, so the board's timer readings around each
-``ffr_step`` count instructions (40 per count at 25 MHz). The board writes
-that profile to UART1, which goes to a file the link reads when it closes
-(``QemuLink.profile``). QEMU never outlives the link: ``close()`` ends it
-(terminate, then kill), it is killed with its parent (PR_SET_PDEATHSIG),
-and Ctrl-C reaches the CLI's ``finally`` that closes the link.
+nanosecond of virtual time, so the board's free-running timer readings
+around each ``ffr_step`` count instructions (``Machine.insn_per_count``:
+40 for the mps2's 25 MHz timer, 1 for the STM32's TIM2 which QEMU clocks at
+1 GHz, 62.5 for the nRF51's 16 MHz TIMER0). The board writes that profile to
+its second UART (or, on the one-UART nRF51, semihosting), which goes to a
+file the link reads when it closes (``QemuLink.profile``). QEMU never
+outlives the link: ``close()`` ends it (terminate, then kill), it is killed
+with its parent (PR_SET_PDEATHSIG), and Ctrl-C reaches the CLI's ``finally``
+that closes the link.
 """
 
 from __future__ import annotations
@@ -33,9 +38,32 @@ from hil_bridge.options import WireOptions, parse_url
 from hil_bridge.serial_link import SerialLink
 
 REPO = Path(__file__).resolve().parents[1]
-MACHINES = {"mps2-an386": REPO / "build" / "arm" / "mps2-an386-board.elf"}
-INSN_PER_COUNT = 40  # a 25 MHz timer, one instruction per ns of virtual time
 _PR_SET_PDEATHSIG = 1
+
+
+@dataclass(frozen=True)
+class Machine:
+    """One emulated board: its image, where its profile goes, what a timer count is."""
+
+    elf: Path
+    insn_per_count: float  # -icount shift=0: one instruction per ns of virtual time
+    profile_on: str  # "serial1": the board's second UART; "semihosting": SYS_WRITE0
+    cpu_hz: int  # the real chip's clock (make bench: the load at that clock)
+    cycles_per_insn: float  # assumed for the load estimate
+
+
+def _elf(name: str) -> Path:
+    return REPO / "build" / "arm" / f"{name}-board.elf"
+
+
+MACHINES = {
+    # CMSDK timer 0 on the 25 MHz clock: 40 ns, 40 instructions a count
+    "mps2-an386": Machine(_elf("mps2-an386"), 40.0, "serial1", 25_000_000, 1.25),
+    # TIM2, PSC 0: QEMU clocks the STM32F2xx/F4xx timers at 1 GHz, one instruction a count
+    "netduinoplus2": Machine(_elf("netduinoplus2"), 1.0, "serial1", 168_000_000, 1.25),
+    # TIMER0 at 16 MHz: 62.5 ns, 62.5 instructions a count; one UART, so the profile goes by semihosting
+    "microbit": Machine(_elf("microbit"), 62.5, "semihosting", 16_000_000, 1.5),
+}
 
 
 @dataclass(frozen=True)
@@ -60,21 +88,28 @@ def _free_port() -> int:
 class QemuBoard:
     """qemu-system-arm running a board image, its UART0 on a loopback socket."""
 
-    def __init__(self, machine: str, elf: Path, log: str = "") -> None:
+    def __init__(self, machine: str, spec: Machine, log: str = "") -> None:
+        elf = spec.elf
         qemu = shutil.which("qemu-system-arm")
         if qemu is None:
             raise LinkError(f"qemu:{machine}: qemu-system-arm not found (apt-get install qemu-system-arm)")
         if not elf.exists():
             raise LinkError(f"qemu:{machine}: board image {elf} not found: build it with `make firmware-boards`")
         self.machine = machine
+        self.spec = spec
         self.port = _free_port()
         self.tmp = Path(tempfile.mkdtemp(prefix="ffr-qemu-"))
-        self.profile_path = self.tmp / "uart1.log"
+        self.profile_path = self.tmp / "profile.log"
         self._log = open(log, "ab") if log else None  # noqa: SIM115 - closed in stop()
         cmd = [qemu, "-M", machine, "-nographic", "-monitor", "none", "-icount", "shift=0",
                "-kernel", str(elf),
                "-chardev", f"socket,id=link,host=127.0.0.1,port={self.port},server=on,wait=on,nodelay=on",
-               "-serial", "chardev:link", "-serial", f"file:{self.profile_path}"]
+               "-serial", "chardev:link"]
+        if spec.profile_on == "semihosting":
+            cmd += ["-chardev", f"file,id=prof,path={self.profile_path}",
+                    "-semihosting-config", "enable=on,target=native,chardev=prof"]
+        else:
+            cmd += ["-serial", f"file:{self.profile_path}"]
         self.proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=self._log or subprocess.DEVNULL,
                                      stderr=self._log or subprocess.DEVNULL, close_fds=True,
                                      preexec_fn=_die_with_parent)  # noqa: PLW1509 - prctl only
@@ -91,7 +126,8 @@ class QemuBoard:
         if not found:
             return None
         steps, total, worst, overruns = (int(v) for v in found[-1])
-        return StepProfile(steps, total * INSN_PER_COUNT / steps, worst * INSN_PER_COUNT, overruns)
+        per = self.spec.insn_per_count
+        return StepProfile(steps, total * per / steps, round(worst * per), overruns)
 
     def stop(self) -> None:
         stop_process(self.proc, (self.proc.terminate, self.proc.kill), wait_s=2.0)
@@ -142,10 +178,10 @@ def open_qemu(url: str) -> QemuLink:
         opts.step_budget_s = 5.0
     if "timeout_s" not in frag.replace("handshake_timeout_s", ""):
         opts.timeout_s = 1.0  # first use of a code path is translated: a long pause, not a loss
-    elf = MACHINES.get(machine)
-    if elf is None:
+    spec = MACHINES.get(machine)
+    if spec is None:
         raise LinkError(f"--link = {url!r}: unknown emulated board '{machine}', known: {sorted(MACHINES)}")
-    board = QemuBoard(machine, elf, opts.log)
+    board = QemuBoard(machine, spec, opts.log)
     try:
         link = QemuLink(board, opts)
     except BaseException:

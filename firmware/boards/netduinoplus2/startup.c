@@ -1,0 +1,95 @@
+/*
+ * Start-up for the STM32F405 (Cortex-M4F) on QEMU's netduinoplus2: vector
+ * table, reset handler (copy .data, zero .bss, enable the FPU), peripheral
+ * clocks, SysTick millisecond clock, wfi idle, semihosting exit.
+ */
+#include <stdint.h>
+
+#include "board.h"
+
+extern uint32_t _sidata, _sdata, _edata, _sbss, _ebss, _estack;
+int main(void);
+void reset_handler(void);
+void default_handler(void);
+void systick_handler(void);
+
+#define SCB_CPACR (*(volatile uint32_t *)0xE000ED88u)
+#define SYST_CSR (*(volatile uint32_t *)0xE000E010u)
+#define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
+#define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
+#define RCC_AHB1ENR (*(volatile uint32_t *)0x40023830u)
+#define RCC_APB1ENR (*(volatile uint32_t *)0x40023840u)
+#define RCC_APB2ENR (*(volatile uint32_t *)0x40023844u)
+
+#define USART1_IRQ 37
+
+static volatile uint32_t g_ms;
+
+/* initial stack pointer, the 15 system exception handlers, the 82 interrupts */
+typedef struct {
+    uint32_t *sp;
+    void (*handler[15])(void);
+    void (*irq[82])(void);
+} vector_table_t;
+
+__attribute__((section(".vectors"), used)) static const vector_table_t vectors = {
+    &_estack,
+    {reset_handler, default_handler, default_handler, default_handler, default_handler, default_handler, 0, 0, 0,
+     0, default_handler, default_handler, 0, default_handler, systick_handler},
+    {[USART1_IRQ] = usart1_irq_handler}, /* the others are never enabled */
+};
+
+void reset_handler(void)
+{
+    uint32_t *src = &_sidata;
+    uint32_t *dst;
+    for (dst = &_sdata; dst < &_edata;) {
+        *dst++ = *src++;
+    }
+    for (dst = &_sbss; dst < &_ebss;) {
+        *dst++ = 0u;
+    }
+    SCB_CPACR |= 0xFu << 20; /* CP10, CP11: the FPU, before any float code runs */
+    __asm__ volatile("dsb\n isb");
+    /* clocks of the parts used: GPIOA; TIM2, USART2; USART1 (QEMU ignores the RCC) */
+    RCC_AHB1ENR |= 1u << 0;
+    RCC_APB1ENR |= (1u << 0) | (1u << 17);
+    RCC_APB2ENR |= 1u << 4;
+    (void)RCC_APB2ENR; /* read back: the clocks are on before the first access */
+    (void)main();
+    board_exit(0);
+}
+
+void default_handler(void) { board_exit(99); }
+
+void systick_handler(void) { g_ms++; }
+
+void board_clock_init(void)
+{
+    SYST_RVR = BOARD_CPU_HZ / 1000u - 1u;
+    SYST_CVR = 0u;
+    SYST_CSR = 7u; /* processor clock, interrupt, enable */
+}
+
+uint32_t board_millis(void) { return g_ms; }
+
+void board_idle(void)
+{
+    /* masked, test, sleep: an interrupt that arrives after the test still
+     * wakes the wfi, and is taken once unmasked */
+    __asm__ volatile("cpsid i" ::: "memory");
+    if (uart_rx_empty()) {
+        __asm__ volatile("wfi");
+    }
+    __asm__ volatile("cpsie i" ::: "memory");
+}
+
+/* ARM semihosting SYS_EXIT: QEMU (-semihosting) ends with this status. */
+void board_exit(int status)
+{
+    register uint32_t r0 __asm__("r0") = 0x18u;
+    register uint32_t r1 __asm__("r1") = status == 0 ? 0x20026u : 0x20024u; /* ApplicationExit / RunTimeError */
+    for (;;) {
+        __asm__ volatile("bkpt 0xAB" : : "r"(r0), "r"(r1) : "memory");
+    }
+}
