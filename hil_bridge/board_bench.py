@@ -23,16 +23,18 @@ from harness.scenario import make_scenario
 from hil_bridge.qemu_board import MACHINES
 
 TICK_MS = 10.0
+# the tick each board runs (docs/boards.md): the Cortex-M0 cannot keep 10 ms, so it runs 20 ms
+BOARD_TICK_MS = {"microbit": 20.0}
 
 
-def load_line(name: str, mean_insn: float, max_insn: int) -> str:
+def load_line(name: str, mean_insn: float, max_insn: int, tick_ms: float = TICK_MS) -> str:
     m = MACHINES[name]
     ms_per_insn = m.cycles_per_insn / m.cpu_hz * 1e3
     mean_ms, max_ms = mean_insn * ms_per_insn, max_insn * ms_per_insn
-    verdict = "keeps the tick" if max_ms <= TICK_MS else f"worst step {max_ms / TICK_MS:.2f}x the tick"
+    verdict = "keeps the tick" if max_ms <= tick_ms else f"worst step {max_ms / tick_ms:.2f}x the tick"
     return (f"at {m.cpu_hz / 1e6:.0f} MHz x {m.cycles_per_insn} cycles/instruction: mean {mean_ms:.3f} ms "
-            f"({100 * mean_ms / TICK_MS:.1f} % of the {TICK_MS:.0f} ms tick), worst {max_ms:.3f} ms "
-            f"({100 * max_ms / TICK_MS:.1f} %): {verdict}")
+            f"({100 * mean_ms / tick_ms:.1f} % of a {tick_ms:.0f} ms tick), worst {max_ms:.3f} ms "
+            f"({100 * max_ms / tick_ms:.1f} %): {verdict}")
 
 
 def bench_boards(rooms: tuple[int, ...] = (1, 4)) -> None:
@@ -55,6 +57,9 @@ def bench_boards(rooms: tuple[int, ...] = (1, 4)) -> None:
                 print(f"    ffr_step: mean {prof.mean_insn:.0f}, worst {prof.max_insn} instructions "
                       f"({prof.steps} steps, {prof.rx_overruns} rx overruns)")
                 print(f"    {load_line(name, prof.mean_insn, prof.max_insn)}")
+                if name in BOARD_TICK_MS:
+                    print(f"    {load_line(name, prof.mean_insn, prof.max_insn, BOARD_TICK_MS[name])} "
+                          "(its tick: docs/boards.md)")
 
 
 if __name__ == "__main__":

@@ -23,7 +23,7 @@ import pytest
 from harness.b2b import back_to_back
 from harness.links import LinkError, open_link
 from harness.loop import run_mission
-from harness.scenario import make_scenario
+from harness.scenario import Timing, make_scenario
 from hil_bridge import codec
 from hil_bridge.codec import MsgType
 from hil_bridge.errors import ErrCode
@@ -81,6 +81,25 @@ def test_mission_on_the_emulated_board_equals_the_host_build(room: int, machine:
     if machine != "microbit":
         assert WORST_INSN[machine] < BUDGET_INSN
     assert pid not in _qemu_pids(machine)  # QEMU is gone
+
+
+def test_the_cortex_m0_keeps_a_20ms_tick() -> None:
+    """The decision for the nRF51 (docs/boards.md): a 20 ms tick. Its worst step, at the chip's
+    16 MHz and the assumed cycles per instruction, fits in it; the mission is the host build's."""
+    from hil_bridge.qemu_board import MACHINES
+
+    m = MACHINES["microbit"]
+    target = open_link("qemu:microbit")
+    try:
+        rep = back_to_back(make_scenario(room=2, timing=Timing(firmware_period_ms=20)), target)
+    finally:
+        target.close()
+    assert rep.identical and rep.results[1].outcome == "home", rep.detail
+    assert not {k: v for k, v in rep.results[1].link_counters.items() if k not in ("sent", "received") and v}
+    prof = target.profile  # type: ignore[attr-defined]
+    assert prof is not None and prof.steps >= 2000
+    worst_ms = prof.max_insn * m.cycles_per_insn / m.cpu_hz * 1000.0
+    assert worst_ms < 20.0 * 0.8, f"worst step {worst_ms:.1f} ms of a 20 ms tick"
 
 
 @pytest.mark.parametrize("machine", BOARDS)
