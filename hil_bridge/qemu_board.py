@@ -117,6 +117,13 @@ class QemuBoard:
     def gone(self, wait_s: float = 0.0) -> str | None:
         return describe_exit(self.proc, f"qemu-system-arm ({self.machine}, pid {self.proc.pid})", wait_s)
 
+    def ready(self) -> bool:
+        """The board has started and its link UART listens (its "ffr-board ready" log line)."""
+        try:
+            return b"ffr-board ready" in self.profile_path.read_bytes()
+        except OSError:
+            return False
+
     def profile(self) -> StepProfile | None:
         try:
             text = self.profile_path.read_text(errors="replace")
@@ -155,6 +162,16 @@ class QemuLink(SerialLink):
                 if gone or time.monotonic() > deadline:
                     raise LinkError(f"qemu:{board.machine}: {gone or 'no UART socket within 10 s'}") from None
                 time.sleep(0.02)
+        # QEMU starts the guest once the socket is connected; the first frame waits until the
+        # board says its UART listens (the STM32 USART model drops bytes that arrive before)
+        deadline = time.monotonic() + opts.handshake_timeout_s
+        while not board.ready():
+            gone = board.gone()
+            if gone or time.monotonic() > deadline:
+                self.close()
+                why = gone or f"no ready line within {opts.handshake_timeout_s:g} s"
+                raise LinkError(f"qemu:{board.machine}: {why}")
+            time.sleep(0.005)
 
     def _gone(self, wait_s: float = 0.0) -> str | None:
         return self.board.gone(wait_s)

@@ -117,6 +117,9 @@ int main(void)
     profile_clock_init();
     b->link.step_clock = profile_clock;
     ffr_deframer_init(&b->rx);
+    /* the link's UART now listens: a host may wait for this line before its first frame
+     * (some UARTs drop what arrives before they are enabled) */
+    board_log_puts("ffr-board ready\n");
     for (;;) {
         int c;
         size_t rlen;
