@@ -7,6 +7,7 @@ validated with one-line errors naming the file, field and value.
 
 from __future__ import annotations
 
+import difflib
 import json
 import math
 import re
@@ -109,6 +110,17 @@ def _timing(r: _Reader) -> Timing:
                   r.number("return_limit_s", t.return_limit_s, positive=True), delay)
 
 
+def _known_only(tab: _Reader, name: str, known: set[str]) -> None:
+    """A table's keys are all known: a typo (``positon``) must never quietly change the experiment."""
+    unknown = sorted(set(tab.table) - known)
+    if unknown:
+        k = unknown[0]
+        near = difflib.get_close_matches(k, sorted(known), n=1)
+        hint = f"did you mean {near[0]!r}? " if near else ""
+        raise FfrInputError(tab.source, f"{name}.{k}", tab.table[k],
+                            f"unknown field ({hint}known: {', '.join(sorted(known))})")
+
+
 def load_scenario(path: str | Path, *, seed: int | None = None) -> Scenario:
     """Load a scenario file; ``seed`` (from the CLI) overrides the file's."""
     p = Path(path)
@@ -145,6 +157,7 @@ def load_scenario(path: str | Path, *, seed: int | None = None) -> Scenario:
     elif noise.endswith(".toml") or "#" in noise:
         noise = str(base / noise)
     candle_tab = r.sub("candle") if "candle" in data else _Reader(src, {}, "candle.")
+    _known_only(candle_tab, "candle", {"room", "position"})
     room = candle_tab.get("room", None)
     pos = candle_tab.table.get("position")
     if room is not None and pos is not None:
@@ -159,6 +172,7 @@ def load_scenario(path: str | Path, *, seed: int | None = None) -> Scenario:
     start = None
     if "start" in data:
         s = r.sub("start")
+        _known_only(s, "start", {"x", "y", "heading_deg"})
         start = (s.number("x"), s.number("y"), math.radians(s.number("heading_deg", 90.0)))
     timing = _timing(r.sub("timing")) if "timing" in data else Timing()
     fw = r.sub("firmware").table if "firmware" in data else {}

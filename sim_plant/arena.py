@@ -257,6 +257,9 @@ def read_toml(path: str | Path) -> dict[str, Any]:
         text = p.read_text(encoding="utf-8")
     except OSError as exc:
         raise FfrInputError(str(p), "(file)", str(p), exc.strerror or "cannot be read") from None
+    except UnicodeDecodeError as exc:
+        raise FfrInputError(str(p), "(encoding)", f"byte {exc.start}",
+                            "not UTF-8 text (TOML files are UTF-8)") from None
     try:
         return copy.deepcopy(_parse_toml(text))
     except tomllib.TOMLDecodeError as exc:

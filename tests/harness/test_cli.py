@@ -7,6 +7,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from harness.cli import main
@@ -75,6 +76,30 @@ def test_bad_scenario_file_names_file_field_value(tmp_path, capsys) -> None:
     assert main(["run", "--scenario", str(s)]) == 2
     err = capsys.readouterr().err
     assert str(s) in err and "timing.firmware_period_ms" in err and "'fast'" in err
+
+
+@pytest.mark.parametrize(("text", "needle"), [
+    ("[candle]\npositon = [0.55, 1.20]\n", "candle.positon = [0.55, 1.2]: unknown field (did you mean 'position'?"),
+    ("[candle]\nroom = 1\n[start]\nx = 2.1\ny = 1.17\nheadng_deg = 0\n",
+     "start.headng_deg = 0: unknown field (did you mean 'heading_deg'?"),
+])
+def test_a_misspelt_key_in_a_table_is_refused(tmp_path, capsys, text: str, needle: str) -> None:
+    """A typo must never quietly change the experiment: the default would run and exit 0."""
+    s = tmp_path / "typo.toml"
+    s.write_text(text)
+    out = tmp_path / "r.json"
+    assert main(["run", "--scenario", str(s), "--json", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and str(s) in err and needle in err
+    assert not out.exists()
+
+
+def test_a_scenario_that_is_not_utf8_is_refused(tmp_path, capsys) -> None:
+    s = tmp_path / "noise.toml"
+    s.write_bytes(bytes(np.random.default_rng(1).integers(128, 256, 300, dtype=np.uint8)))
+    assert main(["run", "--scenario", str(s)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and str(s) in err and "not UTF-8" in err
 
 
 def test_example_scenario_runs(capsys) -> None:
