@@ -35,6 +35,34 @@ def atomic_path(path: str | Path, mode: int | None = None) -> Iterator[Path]:
             os.unlink(tmp)
 
 
+def check_target(path: str | Path) -> str | None:
+    """Why a file cannot be written at ``path`` (missing folders are created), or None: asked
+    before any mission runs, so a bad output path costs one line, not a finished run."""
+    p = Path(path)
+    if p.is_dir():
+        return "is a directory"
+    parent = p.parent
+    while not parent.exists():
+        parent = parent.parent
+    if not parent.is_dir():
+        return f"{parent} is not a directory"
+    if not os.access(parent, os.W_OK | os.X_OK):
+        return f"cannot write in {parent}"
+    return None
+
+
+def check_outputs(args: object, *options: str) -> str | None:
+    """The first of the command's output options (attribute names, e.g. ``json``) that names a
+    file that cannot be written, as ``--option = 'value': why``; None when all can be."""
+    for name in options:
+        value = getattr(args, name, None)
+        if value and value != "-":
+            why = check_target(value)
+            if why:
+                return f"--{name.replace('_', '-')} = {str(value)!r}: {why}"
+    return None
+
+
 def write_bytes_atomic(path: str | Path, data: bytes, mode: int | None = None) -> None:
     with atomic_path(path, mode) as tmp:
         tmp.write_bytes(data)

@@ -19,7 +19,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, NoReturn
 
-from harness.atomic import write_json
+from harness.atomic import check_outputs, write_json
 from sim_plant.errors import FfrInputError
 
 # The paper's Table 1 (its robot, its parameters).
@@ -219,6 +219,9 @@ def _execute(args: argparse.Namespace) -> int:
     from harness.links import LinkError, open_link
     from harness.loop import run_mission
 
+    bad = check_outputs(args, "json", "plot", "out")
+    if bad:
+        raise UsageError(bad)
     if args.command == "b2b":
         return _execute_b2b(args)
     if args.command == "sweep":
@@ -286,7 +289,7 @@ def _replay_paths(args: argparse.Namespace, scenarios: Sequence[Any]) -> list[Pa
         paths = [d / f"replay_{s.name}.html" for s in scenarios]
     else:
         return []
-    from harness.replay.html import check_target
+    from harness.atomic import check_target
 
     for p in paths:
         why = check_target(p)

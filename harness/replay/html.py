@@ -9,7 +9,6 @@ beams, fans and flame and the charts' cursor. See docs/replay.md.
 from __future__ import annotations
 
 import json
-import os
 import re
 from importlib import resources
 from pathlib import Path
@@ -65,21 +64,6 @@ def render_html(data: ReplayData) -> str:
     # One pass over the template, so text put in (a scenario name, say) is never scanned for markers.
     pattern = "|".join(re.escape(k) for k in parts)
     return re.sub(pattern, lambda mt: parts[mt.group(0)], _asset("template.html"))
-
-
-def check_target(path: str | Path) -> str | None:
-    """Why a file cannot be written at ``path`` (missing folders are created), or None."""
-    p = Path(path)
-    if p.is_dir():
-        return "is a directory"
-    parent = p.parent
-    while not parent.exists():
-        parent = parent.parent
-    if not parent.is_dir():
-        return f"{parent} is not a directory"
-    if not os.access(parent, os.W_OK | os.X_OK):
-        return f"cannot write in {parent}"
-    return None
 
 
 def write_html(path: str | Path, text: str) -> None:

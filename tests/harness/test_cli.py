@@ -94,6 +94,21 @@ def test_a_misspelt_key_in_a_table_is_refused(tmp_path, capsys, text: str, needl
     assert not out.exists()
 
 
+@pytest.mark.parametrize("argv", [
+    ["run", "--room", "1", "--json", "/dev/null/x.json"],
+    ["run", "--room", "1", "--plot", "/dev/null/x.png"],
+    ["table1", "--json", "/dev/null/t.json"],
+    ["b2b", "--room", "1", "--link", "ctypes:", "--json", "/dev/null/b.json"],
+    ["sweep", "-n", "1", "--seeds", "0:1", "--out", "/dev/null/s.csv"],
+    ["sweep", "-n", "1", "--seeds", "0:1", "--plot", "/dev/null/s.png"],
+])
+def test_an_output_path_inside_a_file_is_one_line_before_any_mission(capsys, argv: list[str]) -> None:
+    assert main(argv) == 2
+    captured = capsys.readouterr()
+    assert captured.err.count("\n") == 1 and "/dev/null is not a directory" in captured.err
+    assert captured.out == ""  # refused before any mission ran
+
+
 def test_a_scenario_that_is_not_utf8_is_refused(tmp_path, capsys) -> None:
     s = tmp_path / "noise.toml"
     s.write_bytes(bytes(np.random.default_rng(1).integers(128, 256, 300, dtype=np.uint8)))

@@ -8,6 +8,7 @@ import stat
 
 import pytest
 
+import harness.atomic as atomic
 import harness.replay.html as replay_html
 from harness.cli import main
 from harness.replay import build_replay, render_html, save_replay
@@ -62,7 +63,7 @@ def test_write_is_atomic(room1, tmp_path, monkeypatch) -> None:
     def boom(src, dst):
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr(replay_html.os, "replace", boom)
+    monkeypatch.setattr(atomic.os, "replace", boom)
     with pytest.raises(OSError):
         save_replay(target, room1.scn, room1.trace, room1.result)
     assert target.read_text() == "old"
@@ -116,7 +117,7 @@ def test_write_failure_is_one_line_exit_2(tmp_path, capsys, monkeypatch) -> None
     def full(src, dst):
         raise OSError(28, "No space left on device")
 
-    monkeypatch.setattr(replay_html.os, "replace", full)
+    monkeypatch.setattr(atomic.os, "replace", full)
     out = tmp_path / "r.html"
     assert main(["run", "--room", "1", "--replay", str(out)]) == 2
     err = capsys.readouterr().err
@@ -126,7 +127,7 @@ def test_write_failure_is_one_line_exit_2(tmp_path, capsys, monkeypatch) -> None
 
 def test_unwritable_folder_is_refused_before_running(tmp_path, capsys, monkeypatch) -> None:
     # (as root every folder is writable, so pretend: the check asks os.access)
-    monkeypatch.setattr(replay_html.os, "access", lambda path, mode: False)
+    monkeypatch.setattr(atomic.os, "access", lambda path, mode: False)
     assert main(["run", "--replay", str(tmp_path / "r.html")]) == 2
     err = capsys.readouterr().err
     assert "cannot write in" in err and str(tmp_path) in err
