@@ -399,14 +399,20 @@ def run_forked(jobs: Sequence[dict[str, Any]], n: int, progress: Callable[[int],
         for j in rest:
             done(run_chunk([j]))
         return sorted(rows, key=lambda r: r["id"])
-    pool = multiprocessing.get_context("fork").Pool(n, initializer=_forked_worker_init)
+    pool = None
     try:
+        # Ctrl-C held back while the workers are forked: one that came before a worker ran its
+        # initializer would kill it half-started, and one in the middle of Pool() would leave
+        # a pool nobody stops (the exit then hangs on it); it is raised right after instead
+        with _sigint_held():
+            pool = multiprocessing.get_context("fork").Pool(n, initializer=_forked_worker_init)
         for part in pool.imap_unordered(run_chunk, chunked(rest, n)):
             done(part)
         pool.close()
     finally:
-        pool.terminate()
-        pool.join()
+        if pool is not None:
+            pool.terminate()
+            pool.join()
     return sorted(rows, key=lambda r: r["id"])
 
 
