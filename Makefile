@@ -111,6 +111,8 @@ firmware: firmware-host firmware-arm firmware-boards
 # ---- boards ----------------------------------------------------------------
 BOARD_COMMON := firmware/boards/common/selftest.c
 MPS2_DIR := firmware/boards/mps2-an386
+# every microcontroller board's main loop (board link behind the UART)
+BOARD_LOOP := firmware/boards/common/board_loop.c
 MPS2_SRCS := $(MPS2_DIR)/startup.c $(MPS2_DIR)/uart_cmsdk.c
 MPS2_LDFLAGS := -T $(MPS2_DIR)/mps2_an386.ld -nostartfiles -Wl,--gc-sections --specs=nano.specs --specs=nosys.specs
 
@@ -120,9 +122,10 @@ $(BUILD)/arm/mps2-an386-selftest.elf: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) $(MP
 		$(FW_SRCS) $(BOARD_COMMON) $(MPS2_SRCS) $(MPS2_DIR)/selftest_main.c
 
 # The board itself: firmware + codec + board link behind UART0 (--link qemu:mps2-an386).
-$(BUILD)/arm/mps2-an386-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(MPS2_SRCS) $(MPS2_DIR)/main.c $(MPS2_DIR)/*.h $(MPS2_DIR)/*.ld Makefile
+$(BUILD)/arm/mps2-an386-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(BOARD_LOOP) $(MPS2_SRCS) $(MPS2_DIR)/main.c $(MPS2_DIR)/*.h $(MPS2_DIR)/*.ld Makefile
 	@mkdir -p $(dir $@)
-	$(ARM_CC) $(ARM_CFLAGS) -I$(MPS2_DIR) $(MPS2_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(MPS2_SRCS) $(MPS2_DIR)/main.c
+	$(ARM_CC) $(ARM_CFLAGS) -I$(MPS2_DIR) -Ifirmware/boards/common $(MPS2_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) \
+		$(BOARD_LOOP) $(MPS2_SRCS) $(MPS2_DIR)/main.c
 	@$(ARM_SIZE) $@ | awk 'NR==2 { printf "mps2-an386 board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
 
 # STM32F405 (Cortex-M4F) on QEMU's netduinoplus2 (--link qemu:netduinoplus2).
@@ -130,9 +133,10 @@ F405_DIR := firmware/boards/netduinoplus2
 F405_SRCS := $(F405_DIR)/startup.c $(F405_DIR)/uart_stm32.c $(F405_DIR)/main.c
 F405_LDFLAGS := -T $(F405_DIR)/stm32f405.ld -nostartfiles -Wl,--gc-sections --specs=nano.specs --specs=nosys.specs
 
-$(BUILD)/arm/netduinoplus2-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(F405_SRCS) $(F405_DIR)/*.h $(F405_DIR)/*.ld Makefile
+$(BUILD)/arm/netduinoplus2-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(BOARD_LOOP) $(F405_SRCS) $(F405_DIR)/*.h $(F405_DIR)/*.ld Makefile
 	@mkdir -p $(dir $@)
-	$(ARM_CC) $(ARM_CFLAGS) -I$(F405_DIR) $(F405_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(F405_SRCS)
+	$(ARM_CC) $(ARM_CFLAGS) -I$(F405_DIR) -Ifirmware/boards/common $(F405_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) \
+		$(BOARD_LOOP) $(F405_SRCS)
 	@$(ARM_SIZE) $@ | awk 'NR==2 { printf "netduinoplus2 board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
 
 # nRF51822 (Cortex-M0, no FPU: soft float from libgcc) on QEMU's microbit (--link qemu:microbit).
@@ -141,9 +145,10 @@ MICROBIT_SRCS := $(MICROBIT_DIR)/startup.c $(MICROBIT_DIR)/uart_nrf51.c $(MICROB
 M0_CFLAGS := $(CSTD) -Os -mcpu=cortex-m0 -mthumb -mfloat-abi=soft -ffunction-sections -fdata-sections
 MICROBIT_LDFLAGS := -T $(MICROBIT_DIR)/nrf51822.ld -nostartfiles -Wl,--gc-sections --specs=nano.specs --specs=nosys.specs
 
-$(BUILD)/arm/microbit-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(MICROBIT_SRCS) $(MICROBIT_DIR)/*.h $(MICROBIT_DIR)/*.ld Makefile
+$(BUILD)/arm/microbit-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(BOARD_LOOP) $(MICROBIT_SRCS) $(MICROBIT_DIR)/*.h $(MICROBIT_DIR)/*.ld Makefile
 	@mkdir -p $(dir $@)
-	$(ARM_CC) $(M0_CFLAGS) -I$(MICROBIT_DIR) $(MICROBIT_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(MICROBIT_SRCS)
+	$(ARM_CC) $(M0_CFLAGS) -I$(MICROBIT_DIR) -Ifirmware/boards/common $(MICROBIT_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) \
+		$(BOARD_LOOP) $(MICROBIT_SRCS)
 	@$(ARM_SIZE) $@ | awk 'NR==2 { printf "microbit board: flash %d bytes, RAM %d bytes\n", $$1+$$2, $$2+$$3 }'
 
 $(BUILD)/arm/microbit-selftest.elf: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) $(MICROBIT_DIR)/startup.c $(MICROBIT_DIR)/uart_nrf51.c $(MICROBIT_DIR)/selftest_main.c $(MICROBIT_DIR)/*.h $(MICROBIT_DIR)/*.ld Makefile
@@ -152,9 +157,10 @@ $(BUILD)/arm/microbit-selftest.elf: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) $(MICR
 		$(FW_SRCS) $(BOARD_COMMON) $(MICROBIT_DIR)/startup.c $(MICROBIT_DIR)/uart_nrf51.c $(MICROBIT_DIR)/selftest_main.c
 
 # The same for a micro:bit without a debugger: no semihosting (it would fault), so no profile line.
-$(BUILD)/arm/microbit-hw.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(MICROBIT_SRCS) $(MICROBIT_DIR)/*.h $(MICROBIT_DIR)/*.ld Makefile
+$(BUILD)/arm/microbit-hw.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(BOARD_LOOP) $(MICROBIT_SRCS) $(MICROBIT_DIR)/*.h $(MICROBIT_DIR)/*.ld Makefile
 	@mkdir -p $(dir $@)
-	$(ARM_CC) $(M0_CFLAGS) -DBOARD_PROFILE_LOG=0 -I$(MICROBIT_DIR) $(MICROBIT_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) $(MICROBIT_SRCS)
+	$(ARM_CC) $(M0_CFLAGS) -DBOARD_PROFILE_LOG=0 -I$(MICROBIT_DIR) -Ifirmware/boards/common $(MICROBIT_LDFLAGS) -o $@ \
+		$(FW_SRCS) $(WIRE_SRCS) $(BOARD_LOOP) $(MICROBIT_SRCS)
 
 $(BUILD)/host/ffr_selftest: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) firmware/boards/host_selftest/main.c Makefile
 	@mkdir -p $(dir $@)
