@@ -185,8 +185,10 @@ def table1_text(results: Sequence[Any]) -> str:
 def _execute_b2b(args: argparse.Namespace) -> int:
     from harness.b2b import back_to_back
     from harness.links import LinkError, open_link
+    from harness.loop import warm_up
 
     scn = _scenarios(args, [args.room])[0]
+    warm_up(scn, record=True)  # compile before a board waits
     target = open_link(args.link)
     reference = open_link(args.reference)
     try:
@@ -217,7 +219,7 @@ def _execute_b2b(args: argparse.Namespace) -> int:
 
 def _execute(args: argparse.Namespace) -> int:
     from harness.links import LinkError, open_link
-    from harness.loop import run_mission
+    from harness.loop import run_mission, warm_up
 
     bad = check_outputs(args, "json", "plot", "out")
     if bad:
@@ -235,6 +237,8 @@ def _execute(args: argparse.Namespace) -> int:
         rooms = [args.room]
     scenarios = _scenarios(args, rooms)
     replays = _replay_paths(args, scenarios)  # checked before the missions run
+    if not args.link.startswith("ctypes:"):
+        warm_up(scenarios[0], record=bool(args.plot or replays))  # compile before a board waits
     link = open_link(args.link)
     missions = []
     try:

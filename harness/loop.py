@@ -127,7 +127,7 @@ class Mission:
         sensors = SensorSuite(scn.arena, scn.robot, candle, scn.noise, rng)
         cfg = build_config(scn.robot, scn.firmware, scn.source)
         if not compiled:
-            self._warm_up(record)  # before the reset: a board's watchdog runs from there
+            warm_up(scn, record)  # before the reset: a board's watchdog runs from there
         counters0 = link.link_counters()
         link.reset(cfg)
 
@@ -214,32 +214,6 @@ class Mission:
         return result, Trace(tf[:n].copy(), ti[:n].copy())
 
 
-    def _warm_up(self, record: bool) -> None:
-        """One tick of every kernel the Python loop calls, on throwaway objects and a throwaway
-        random stream: a cold numba cache compiles them here, not between two firmware ticks,
-        where a board's link watchdog would see the host go silent for seconds."""
-        scn = self.scenario
-        plant = Plant(scn.arena, scn.robot, *scn.start, plant_dt=scn.timing.plant_dt_ms / 1000.0,
-                      source=scn.source)
-        candle = Candle(scn.candle[0], scn.candle[1], scn.robot, scn.arena)
-        rng = np.random.default_rng(0)
-        hw = new_output()
-        SensorSuite(scn.arena, scn.robot, candle, scn.noise, rng).sample(
-            0.0, plant.x, plant.y, plant.theta, plant.phi_l, plant.phi_r, hw)
-        if scn.events:
-            EventRunner(scn.events, rng).apply(0.0, hw)
-        inp, out = new_inputs(), new_outputs()
-        b = inp.reshape(1).view(np.uint8)
-        _pack(b.view(np.uint32), b.view(np.int32), b.view(np.uint16), b, 0, 0, hw, 0)
-        if record:
-            ob = out.reshape(1).view(np.uint8)
-            _record(np.zeros((1, N_F)), np.zeros((1, N_I), dtype=np.int32), 0, 0.0, plant.x, plant.y,
-                    plant.theta, ob.view(np.int16), ob, hw, 0)
-        period = scn.timing.firmware_period_ms / 1000.0
-        plant.apply(0, 0)
-        plant.integrate(period)
-        candle.update(period, period, False, plant.x, plant.y, plant.theta)
-
     def _python_loop(self, plant: Plant, candle: Candle, sensors: SensorSuite,
                      events: EventRunner | None, inp: np.ndarray, out: np.ndarray, u32: np.ndarray,
                      i32: np.ndarray, u16: np.ndarray, in_bytes: np.ndarray, o16: np.ndarray,
@@ -315,6 +289,33 @@ class Mission:
                 outcome, detail = "timeout", "time limit"
                 break
         return k, t, done_t, outcome, detail
+
+
+def warm_up(scn: Scenario, record: bool) -> None:
+    """One tick of every kernel the Python loop calls, on throwaway objects and a throwaway
+    random stream: a cold numba cache compiles them here, not between two firmware ticks,
+    where a board's link watchdog would see the host go silent for seconds. The CLI calls it
+    before it opens a wire link too, so that no board waits for a compiling host."""
+    plant = Plant(scn.arena, scn.robot, *scn.start, plant_dt=scn.timing.plant_dt_ms / 1000.0,
+                  source=scn.source)
+    candle = Candle(scn.candle[0], scn.candle[1], scn.robot, scn.arena)
+    rng = np.random.default_rng(0)
+    hw = new_output()
+    SensorSuite(scn.arena, scn.robot, candle, scn.noise, rng).sample(
+        0.0, plant.x, plant.y, plant.theta, plant.phi_l, plant.phi_r, hw)
+    if scn.events:
+        EventRunner(scn.events, rng).apply(0.0, hw)
+    inp, out = new_inputs(), new_outputs()
+    b = inp.reshape(1).view(np.uint8)
+    _pack(b.view(np.uint32), b.view(np.int32), b.view(np.uint16), b, 0, 0, hw, 0)
+    if record:
+        ob = out.reshape(1).view(np.uint8)
+        _record(np.zeros((1, N_F)), np.zeros((1, N_I), dtype=np.int32), 0, 0.0, plant.x, plant.y,
+                plant.theta, ob.view(np.int16), ob, hw, 0)
+    period = scn.timing.firmware_period_ms / 1000.0
+    plant.apply(0, 0)
+    plant.integrate(period)
+    candle.update(period, period, False, plant.x, plant.y, plant.theta)
 
 
 def run_mission(scn: Scenario, link: FirmwareLink | str = "ctypes:", record: bool = True,

@@ -289,3 +289,25 @@ def test_board_over_stdio_answers_a_hello() -> None:
     assert t == MsgType.INFO and int(info["layout_hash"]) == codec.layout_hash()
     assert p.returncode == 0 and b"the host closed the line" in p.stderr
 
+
+
+def test_a_board_nobody_connects_to_gives_up_after_its_connect_timeout() -> None:
+    from hil_bridge.host_board import board_program
+
+    p = subprocess.run([str(board_program()), "--pty", "--connect-timeout-ms", "300"],
+                       capture_output=True, text=True, timeout=10)
+    assert p.returncode == 1 and "nobody connected within 300 ms" in p.stderr
+
+
+def test_a_board_waits_for_a_harness_that_is_slow_to_start() -> None:
+    # A cold numba cache on a busy machine once held the harness for over 10 s between
+    # starting its board and the handshake; the board gave up ("nobody connected") and the
+    # run failed. A board on a lifeline waits as long as its harness lives.
+    link = open_link("host-board:serial")
+    try:
+        time.sleep(10.5)  # past the board's default connect timeout of 10 s
+        assert alive(link.board.pid)  # type: ignore[attr-defined]
+        link.reset(_config())
+        assert link.link_counters().errors == {}
+    finally:
+        link.close()

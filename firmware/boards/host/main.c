@@ -9,6 +9,9 @@
  *
  * --stdin-lifeline: exit when standard input closes, i.e. when the process
  * that launched us has gone, so a board never outlives its harness.
+ * --connect-timeout-ms: exit if nobody has sent a byte by then. Default 10 s,
+ * none with --stdin-lifeline: the launcher is alive, and it may first spend
+ * many seconds compiling its plant on a cold cache (seen on a fresh CI clone).
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -81,7 +84,7 @@ int main(int argc, char **argv)
     transport_t t;
     transport_kind_t kind = TRANSPORT_PTY;
     long port = 0, watchdog = FFR_WATCHDOG_DEFAULT_MS, delay_us = 0, connect_ms = 10000;
-    int lifeline = 0, i, rc = 0;
+    int lifeline = 0, i, rc = 0, connect_given = 0;
     uint32_t started;
     int connected = 0;
 
@@ -104,6 +107,7 @@ int main(int argc, char **argv)
             ++i;
         } else if (strcmp(a, "--connect-timeout-ms") == 0) {
             connect_ms = arg_long(a, v, 1, 3600000);
+            connect_given = 1;
             ++i;
         } else if (strcmp(a, "--stdin-lifeline") == 0) {
             lifeline = 1;
@@ -132,7 +136,8 @@ int main(int argc, char **argv)
         }
         if (n > 0) {
             connected = 1;
-        } else if (!connected && (uint32_t)(now_ms() - started) > (uint32_t)connect_ms) {
+        } else if (!connected && (!lifeline || connect_given) &&
+                   (uint32_t)(now_ms() - started) > (uint32_t)connect_ms) {
             fprintf(stderr, "ffr-host-board: nobody connected within %ld ms\n", connect_ms);
             rc = 1;
             break;
