@@ -214,7 +214,7 @@ run: setup firmware-host
 # Budget for ffr_step on the target: 20,000 instructions (an 84 MHz Cortex-M4 at
 # ~1.5 cycles per instruction spends 0.36 ms of its 10 ms tick on navigation).
 # The firmware's own bound on its worst tick: 5,000 instructions (docs/pil.md).
-# Then every board on QEMU (hil_bridge/board_bench.py): rooms 1 and 4, identical with the host
+# Then every board on QEMU (harness/board_bench.py): rooms 1 and 4, identical with the host
 # build?, ffr_step mean and worst instructions, and the load at the chip's clock (168 MHz F405 and
 # 25 MHz mps2 at an assumed 1.25 cycles/instruction, 16 MHz nRF51 at 1.5; docs/boards.md).
 bench: setup firmware-host
@@ -225,7 +225,7 @@ bench: setup firmware-host
 		$(MAKE) -s selftest | grep ffr-profile; \
 		echo "mps2-an386, the four rooms (goal: worst <= 5000):"; \
 		for r in 1 2 3 4; do $(VENV)/bin/ffr b2b --room $$r | sed -n "1s/^/  /p;3p"; done; \
-		$(PY) -m hil_bridge.board_bench; \
+		$(PY) -m harness.board_bench; \
 	else echo "Cortex-M4 profile skipped: needs $(ARM_CC) and $(QEMU)"; fi
 
 clean:

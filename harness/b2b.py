@@ -15,8 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from harness.firmware_abi import STATE_NAMES
-from harness.links import FirmwareLink
+from ffr_link import FirmwareLink
+from ffr_link.abi import STATE_NAMES
 from harness.loop import I_FAN, I_PWM_L, I_PWM_R, I_STATE, Trace, run_mission
 from harness.scenario import Scenario
 from harness.scoring import MissionResult

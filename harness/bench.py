@@ -98,10 +98,10 @@ def _firmware_loop(fn: int, st: int, inputs: int, in_size: int, out: int, n: int
 
 def bench_parts(repeat: int) -> float:
     """Per-tick costs in compiled loops; returns the firmware-alone cost (us/tick)."""
-    from harness.firmware_abi import INPUTS_DTYPE
+    from ffr_link.abi import INPUTS_DTYPE
+    from ffr_link.base import new_outputs
+    from ffr_link.ctypes_link import CtypesLink
     from harness.firmware_config import build_config
-    from harness.links.base import new_outputs
-    from harness.links.ctypes_link import CtypesLink
     from sim_plant.candle import Candle
     from sim_plant.plant import Plant
     from sim_plant.sensors import SensorSuite, new_output
@@ -314,7 +314,7 @@ def main() -> None:
           f">= {GOAL_SWEEP_PER_MIN:,.0f}/min")
     _goal("start-up, ffr run --room 1", f"{start:.3f} s", start < GOAL_STARTUP_S, f"< {GOAL_STARTUP_S} s")
     if not quick:
-        from hil_bridge.bench import bench_links
+        from harness.bench_links import bench_links
         bench_links()
 
 

@@ -131,8 +131,8 @@ def _scenarios(args: argparse.Namespace, rooms: Sequence[int | None]) -> list[An
             from sim_plant.sensors import load_noise_profile
             scn.noise = load_noise_profile(args.noise)
         if fw:
+            from ffr_link.ctypes_link import default_config
             from harness.firmware_config import apply_overrides
-            from harness.links.ctypes_link import default_config
             apply_overrides(default_config(), fw, "--set")  # validate early
             scn.firmware.update(fw)
         if ro:
@@ -183,8 +183,8 @@ def table1_text(results: Sequence[Any]) -> str:
 
 
 def _execute_b2b(args: argparse.Namespace) -> int:
+    from ffr_link import LinkError, open_link
     from harness.b2b import back_to_back
-    from harness.links import LinkError, open_link
     from harness.loop import warm_up
 
     scn = _scenarios(args, [args.room])[0]
@@ -218,7 +218,7 @@ def _execute_b2b(args: argparse.Namespace) -> int:
 
 
 def _execute(args: argparse.Namespace) -> int:
-    from harness.links import LinkError, open_link
+    from ffr_link import LinkError, open_link
     from harness.loop import run_mission, warm_up
 
     bad = check_outputs(args, "json", "plot", "out")
@@ -304,8 +304,8 @@ def _replay_paths(args: argparse.Namespace, scenarios: Sequence[Any]) -> list[Pa
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    from harness.firmware_abi import FirmwareLayoutError
-    from harness.links import LinkError
+    from ffr_link import LinkError
+    from ffr_link.abi import FirmwareLayoutError
 
     try:
         args = build_parser().parse_args(argv)

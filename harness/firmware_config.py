@@ -13,8 +13,8 @@ from typing import Any
 
 import numpy as np
 
-from harness.firmware_abi import CONFIG_DTYPE, CONFIG_PRIVATE, IR_COUNT
-from harness.links.ctypes_link import default_config
+from ffr_link.abi import CONFIG_DTYPE, CONFIG_PRIVATE, IR_COUNT
+from ffr_link.ctypes_link import default_config
 from sim_plant.errors import FfrInputError
 from sim_plant.robot import IR_NAMES, RobotParams
 

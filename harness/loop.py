@@ -20,18 +20,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from harness.events import N_EV_STATE, EventRunner, pack_events
-from harness.firmware_abi import (
+from ffr_link import FirmwareLink, open_link
+from ffr_link.abi import (
     FAIL_NAMES,
     INPUTS_DTYPE,
     OUTPUTS_DTYPE,
     ST_DONE,
     ST_FAILED,
 )
+from ffr_link.base import LinkError, new_inputs, new_outputs
+from ffr_link.ctypes_link import CtypesLink
+from harness.events import N_EV_STATE, EventRunner, pack_events
 from harness.firmware_config import build_config
-from harness.links import FirmwareLink, open_link
-from harness.links.base import LinkError, new_inputs, new_outputs
-from harness.links.ctypes_link import CtypesLink
 from harness.scenario import Scenario
 from harness.scoring import MissionResult, ScoringRules, contest_score
 from harness.tick import (

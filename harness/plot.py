@@ -13,8 +13,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.patches import Circle, Polygon  # noqa: E402
 
+from ffr_link.abi import STATE_NAMES  # noqa: E402
 from harness.atomic import atomic_path  # noqa: E402
-from harness.firmware_abi import STATE_NAMES  # noqa: E402
 from harness.loop import I_CONTACT, I_STATE, Trace  # noqa: E402
 from harness.scenario import Scenario  # noqa: E402
 from harness.scoring import MissionResult  # noqa: E402

@@ -115,7 +115,7 @@ def _ffr_default_link(request: pytest.FixtureRequest, monkeypatch: pytest.Monkey
     url = request.config.getoption("ffr_link")
     if url != "ctypes:":
         import harness.loop
-        from harness.links import open_link
+        from ffr_link import open_link
 
         opened: list[Any] = []
 
@@ -143,7 +143,7 @@ def check_clean_link(link: Any, counters: Any) -> None:
 @pytest.fixture(scope="session")
 def ffr_link(pytestconfig: pytest.Config):
     """The session's firmware link (``--ffr-link``), opened once."""
-    from harness.links import LinkError, open_link
+    from ffr_link import LinkError, open_link
     url = pytestconfig.getoption("--ffr-link")
     try:
         link = open_link(url)

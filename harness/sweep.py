@@ -198,7 +198,7 @@ _LINKS: dict[str, Any] = {}
 
 
 def _link(url: str) -> Any:
-    from harness.links import open_link
+    from ffr_link import open_link
     if url not in _LINKS:
         _LINKS[url] = open_link(url)
     return _LINKS[url]

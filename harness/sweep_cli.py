@@ -80,9 +80,9 @@ def add_sweep_parser(sub: Any) -> None:
 
 def _check(args: argparse.Namespace) -> None:
     """Every setting and parameter value checked before any mission starts."""
+    from ffr_link.ctypes_link import default_config
     from harness.cli import UsageError
     from harness.firmware_config import apply_overrides
-    from harness.links.ctypes_link import default_config
     from sim_plant.arena import load_arena
     from sim_plant.robot import load_robot, override
     from sim_plant.sensors import load_noise_profile

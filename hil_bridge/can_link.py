@@ -15,7 +15,7 @@ from dataclasses import replace
 import can
 import numpy as np
 
-from harness.links.base import LinkError
+from ffr_link.base import LinkError
 from hil_bridge import codec
 from hil_bridge.faults import FaultInjector, flip_bit
 from hil_bridge.options import WireOptions, parse_url

@@ -3,7 +3,7 @@
 Layers (docs/protocol.md):
 
 - struct <-> wire bytes: every field in layout order, little-endian, no
-  padding (numpy "packed" dtypes derived from ``harness.firmware_abi``);
+  padding (numpy "packed" dtypes derived from ``ffr_link.abi``);
 - message = one type byte + a body of a size fixed by the type;
 - serial frame = COBS(message || CRC-16 big-endian) || 0x00;
 - CAN = (body || CRC-16) cut into 8-byte (classic) or 64-byte (FD) segments,
@@ -21,7 +21,7 @@ from enum import IntEnum
 
 import numpy as np
 
-from harness.firmware_abi import (
+from ffr_link.abi import (
     CONFIG_DTYPE,
     CONFIG_FIELDS,
     EXPECTED,

@@ -24,7 +24,7 @@ import time
 from pathlib import Path
 from typing import IO
 
-from harness.links.base import LinkError
+from ffr_link.base import LinkError
 from hil_bridge.child_process import describe_exit, stop_process
 from hil_bridge.options import WireOptions, parse_url
 from hil_bridge.serial_link import SerialLink

@@ -1,37 +1,31 @@
-"""Registers the wire links' URL schemes with the harness (imported lazily by
-``harness.links.base``). Each factory imports its transport only when used,
-so ``ctypes:`` runs never load pyserial or python-can."""
+"""The wire links' URL schemes. pyproject.toml names each factory as an entry point of the
+group ``ffr.links`` (ffr_link/base.py finds them there); each imports its transport only when
+used, so ``ctypes:`` runs never load pyserial or python-can."""
 
 from __future__ import annotations
 
-from harness.links.base import FirmwareLink, register_link
+from ffr_link.base import FirmwareLink
 
 
-def _serial(url: str) -> FirmwareLink:
+def open_serial_url(url: str) -> FirmwareLink:
     from hil_bridge.serial_link import open_serial
 
     return open_serial(url)
 
 
-def _can(url: str) -> FirmwareLink:
+def open_can_url(url: str) -> FirmwareLink:
     from hil_bridge.can_link import open_can
 
     return open_can(url)
 
 
-def _host_board(url: str) -> FirmwareLink:
+def open_host_board_url(url: str) -> FirmwareLink:
     from hil_bridge.host_board import open_host_board
 
     return open_host_board(url)
 
 
-def _qemu(url: str) -> FirmwareLink:
+def open_qemu_url(url: str) -> FirmwareLink:
     from hil_bridge.qemu_board import open_qemu
 
     return open_qemu(url)
-
-
-register_link("serial", _serial)
-register_link("qemu", _qemu)
-register_link("can", _can)
-register_link("host-board", _host_board)

@@ -12,7 +12,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from harness.links.ctypes_link import library_path, load_library
+from ffr_link.ctypes_link import library_path, load_library
 from hil_bridge.codec import FRAME_MAX, MSG_MAX
 from hil_bridge.errors import DecodeError, Status
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
 
-from harness.links.base import LinkError
+from ffr_link.base import LinkError
 from hil_bridge.faults import FaultSpec
 
 

@@ -14,7 +14,7 @@ from dataclasses import replace
 
 import serial
 
-from harness.links.base import LinkError
+from ffr_link.base import LinkError
 from hil_bridge import codec
 from hil_bridge.errors import DecodeError
 from hil_bridge.faults import FaultInjector, flip_bit

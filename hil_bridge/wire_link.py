@@ -18,8 +18,8 @@ from abc import abstractmethod
 
 import numpy as np
 
-from harness.firmware_abi import INPUTS_DTYPE
-from harness.links.base import FirmwareLink, LinkError
+from ffr_link.abi import INPUTS_DTYPE
+from ffr_link.base import FirmwareLink, LinkError
 from hil_bridge import codec
 from hil_bridge.codec import MsgType
 from hil_bridge.crc import crc16

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from harness.firmware_abi import STATE_NAMES
+from ffr_link.abi import STATE_NAMES
 from harness.loop import I_CONTACT, I_FAN, I_PWM_L, I_PWM_R, I_SENS, I_STATE, Trace
 from harness.scenario import Scenario
 from harness.scoring import MissionResult

@@ -72,7 +72,7 @@ def test_crc_check_value_and_c_agree(c: CCodec) -> None:
 
 
 def test_layout_hash_from_the_dtypes_matches_the_library() -> None:
-    from harness.links.ctypes_link import library_path, load_library
+    from ffr_link.ctypes_link import library_path, load_library
 
     lib, layout = load_library(str(library_path()))
     assert codec.layout_hash() == layout.layout_hash
@@ -198,7 +198,7 @@ def test_overlong_frame_is_refused_and_the_next_one_found() -> None:
 
 
 def test_native_structs_round_trip_exactly() -> None:
-    from harness.links.ctypes_link import default_config
+    from ffr_link.ctypes_link import default_config
 
     cfg = default_config()
     t, back = codec.decode_msg(codec.encode_msg(MsgType.RESET, cfg))

@@ -10,7 +10,7 @@ import can
 import cantools
 import pytest
 
-from harness.links import open_link
+from ffr_link import open_link
 from harness.loop import run_mission
 from hil_bridge import codec, dbc
 from hil_bridge.can_board import CanBoard

@@ -15,9 +15,9 @@ from collections.abc import Callable, Iterator
 import numpy as np
 import pytest
 
+from ffr_link import LinkError, open_link
+from ffr_link.base import new_inputs, new_outputs
 from harness.firmware_config import build_config
-from harness.links import LinkError, open_link
-from harness.links.base import new_inputs, new_outputs
 from harness.loop import run_mission
 from hil_bridge import codec
 from hil_bridge.codec import MsgType
@@ -189,7 +189,7 @@ def test_close_ends_the_board_process() -> None:
 
 def test_the_board_exits_when_its_harness_is_killed() -> None:
     code = ("import os, signal, sys\n"
-            "from harness.links import open_link\n"
+            "from ffr_link import open_link\n"
             "link = open_link('host-board:serial')\n"
             "print(link.board.pid, flush=True)\n"
             "os.kill(os.getpid(), signal.SIGKILL)\n")

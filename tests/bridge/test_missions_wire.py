@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from harness.links import open_link
+from ffr_link import open_link
 from harness.loop import Trace, run_mission
 from harness.scenario import make_scenario
 from harness.scoring import MissionResult

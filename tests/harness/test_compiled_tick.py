@@ -7,9 +7,9 @@ from typing import Any
 import numpy as np
 import pytest
 
+from ffr_link import FirmwareLink, open_link
+from ffr_link.ctypes_link import CtypesLink
 from harness.events import Event
-from harness.links import FirmwareLink, open_link
-from harness.links.ctypes_link import CtypesLink
 from harness.loop import Mission, run_mission
 from harness.scenario import Timing, make_scenario
 

@@ -6,7 +6,8 @@ import dataclasses
 
 import pytest
 
-from harness.firmware_abi import (
+from ffr_link import LinkError, open_link
+from ffr_link.abi import (
     CONFIG_DTYPE,
     INPUTS_DTYPE,
     OUTPUTS_DTYPE,
@@ -15,8 +16,7 @@ from harness.firmware_abi import (
     FirmwareLayoutError,
     check_layout,
 )
-from harness.links import LinkError, open_link
-from harness.links.ctypes_link import DEFAULT_LIB, default_config, load_library
+from ffr_link.ctypes_link import DEFAULT_LIB, default_config, load_library
 
 
 def test_library_layout_matches() -> None:

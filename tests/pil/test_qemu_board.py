@@ -20,8 +20,8 @@ from pathlib import Path
 
 import pytest
 
+from ffr_link import LinkError, open_link
 from harness.b2b import back_to_back
-from harness.links import LinkError, open_link
 from harness.loop import run_mission
 from harness.scenario import Timing, make_scenario
 from hil_bridge import codec

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from harness.firmware_abi import STATE_NAMES
+from ffr_link.abi import STATE_NAMES
 from harness.replay.browser import missing_reason, replay_page, show_time
 
 BACKGROUND = np.array([0x15, 0x17, 0x1A])  # the page's and the scene's background

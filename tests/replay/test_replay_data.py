@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from harness.firmware_abi import STATE_NAMES
+from ffr_link.abi import STATE_NAMES
 from harness.loop import I_FAN, I_SENS, I_STATE, N_F, N_I, Trace
 from harness.replay.data import (
     MV_AT_FAR,

@@ -9,16 +9,16 @@ from pathlib import Path
 
 import numpy as np
 
-from harness.firmware_abi import (
+from ffr_link.abi import (
     CONFIG_DTYPE,
     FirmwareLayoutError,
     LibraryLayout,
     check_layout,
     read_layout,
 )
-from harness.links.base import FirmwareLink, LinkCounters, LinkError, register_link
+from ffr_link.base import FirmwareLink, LinkCounters, LinkError
 
-REPO = Path(__file__).resolve().parents[2]
+REPO = Path(__file__).resolve().parents[1]
 DEFAULT_LIB = REPO / "build" / "host" / "libffr.so"
 
 
@@ -103,9 +103,7 @@ class CtypesLink(FirmwareLink):
         self.steps += 1
 
 
-def _factory(url: str) -> FirmwareLink:
+def open_ctypes(url: str) -> FirmwareLink:
+    """``ctypes:`` (our build) or ``ctypes:PATH`` (any library that meets the contract)."""
     rest = url.partition(":")[2]
     return CtypesLink(rest or None)
-
-
-register_link("ctypes", _factory)

@@ -11,10 +11,11 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, fields
+from importlib.metadata import EntryPoint, entry_points
 
 import numpy as np
 
-from harness.firmware_abi import CONFIG_DTYPE, INPUTS_DTYPE, OUTPUTS_DTYPE
+from ffr_link.abi import CONFIG_DTYPE, INPUTS_DTYPE, OUTPUTS_DTYPE
 
 
 class LinkError(RuntimeError):
@@ -106,6 +107,14 @@ class FirmwareLink(ABC):
     def _step_impl(self, inputs: np.ndarray, outputs: np.ndarray) -> None: ...
 
 
+# Link schemes. A scheme is found, in this order, among those registered in this process
+# (``register_link``) and those installed as entry points of the group ``ffr.links``: a
+# distribution's ``[project.entry-points."ffr.links"] myscheme = "pkg.module:factory"``, the way
+# python-can finds its interfaces. ffr's own schemes are entry points of ffr itself (pyproject.toml),
+# so a team's link (a Bluetooth serial, a USB HID board, a logic-analyser replay) is a pip package,
+# not a patch. A factory takes the whole URL and returns an open FirmwareLink.
+ENTRY_POINT_GROUP = "ffr.links"
+
 _REGISTRY: dict[str, Callable[[str], FirmwareLink]] = {}
 
 
@@ -113,24 +122,42 @@ def register_link(scheme: str, factory: Callable[[str], FirmwareLink]) -> None:
     _REGISTRY[scheme] = factory
 
 
+def _installed() -> dict[str, EntryPoint]:
+    return {ep.name: ep for ep in entry_points(group=ENTRY_POINT_GROUP)}
+
+
+def known_schemes() -> list[str]:
+    return sorted(set(_REGISTRY) | set(_installed()))
+
+
+def _factory(url: str, scheme: str) -> Callable[[str], FirmwareLink]:
+    factory = _REGISTRY.get(scheme)
+    if factory is not None:
+        return factory
+    ep = _installed().get(scheme)
+    if ep is None:
+        raise LinkError(f"--link = {url!r}: unknown scheme '{scheme}', known: {known_schemes()}")
+    try:
+        loaded = ep.load()  # the module imports its transport only now: ctypes runs load no pyserial
+    except (ImportError, AttributeError) as exc:
+        raise LinkError(f"--link = {url!r}: the link plug-in {ep.value!r} ({ep.group}) does not load: "
+                        f"{exc}") from None
+    if not callable(loaded):
+        raise LinkError(f"--link = {url!r}: the link plug-in {ep.value!r} is not a factory")
+    register_link(scheme, loaded)
+    return loaded
+
+
 def open_link(url: str) -> FirmwareLink:
     """Open a link from its URL, e.g. ``ctypes:`` or ``ctypes:path/to/libffr.so``."""
     scheme, sep, _ = url.partition(":")
-    if not sep:
-        raise LinkError(f"--link = {url!r}: not a link URL (scheme:rest), known: {sorted(_REGISTRY)}")
-    _load_builtin()
-    factory = _REGISTRY.get(scheme)
-    if factory is None:
-        raise LinkError(f"--link = {url!r}: unknown scheme '{scheme}', known: {sorted(_REGISTRY)}")
-    link = factory(url)
+    if not sep or not scheme:
+        raise LinkError(f"--link = {url!r}: not a link URL (scheme:rest), known: {known_schemes()}")
+    link = _factory(url, scheme)(url)
+    if not isinstance(link, FirmwareLink):
+        raise LinkError(f"--link = {url!r}: the '{scheme}' factory gave {type(link).__name__}, not a FirmwareLink")
     link.url = url
     return link
-
-
-def _load_builtin() -> None:
-    # Imported lazily: a transport's dependencies load only when it is used.
-    from harness.links import ctypes_link  # noqa: F401
-    from hil_bridge import links  # noqa: F401  serial:, can:, host-board:
 
 
 def new_inputs() -> np.ndarray:

@@ -16,8 +16,8 @@ from __future__ import annotations
 import shutil
 import time
 
+from ffr_link import open_link
 from harness.b2b import compare_traces
-from harness.links import open_link
 from harness.loop import run_mission
 from harness.scenario import make_scenario
 from hil_bridge.qemu_board import MACHINES

@@ -8,9 +8,9 @@ import time
 
 import numpy as np
 
+from ffr_link import open_link
+from ffr_link.base import LinkError, new_inputs, new_outputs
 from harness.firmware_config import build_config
-from harness.links import open_link
-from harness.links.base import LinkError, new_inputs, new_outputs
 from harness.loop import run_mission
 from harness.scenario import make_scenario
 from hil_bridge import codec
