@@ -106,7 +106,7 @@ def _check(args: argparse.Namespace) -> None:
         try:
             import pyarrow  # noqa: F401
         except ImportError:
-            raise UsageError(f"--out = {args.out!r}: Parquet needs pyarrow (pip install pyarrow); "
+            raise UsageError(f"--out = {args.out!r}: Parquet needs pyarrow (pip install 'ffr[parquet]'); "
                              "or write .csv") from None
     load_noise_profile(args.noise)
     arena = load_arena(args.arena)

@@ -168,3 +168,17 @@ def test_envelope_table(capsys) -> None:
     assert code == 0
     row = next(line for line in out.splitlines() if line.startswith("| ir sigma 20 mV |"))
     assert row == "| ir sigma 20 mV | 100.0 | 100.0 | x1 |"
+
+
+def test_a_parquet_sweep_holds_the_csv_rows(tmp_path) -> None:
+    import pyarrow.parquet as pq  # the `parquet` extra (also in `test`)
+
+    argv = ["sweep", "--rooms", "1", "--candles", "default", "--seeds", "0:2", "--workers", "1", "--no-progress"]
+    assert main([*argv, "--out", str(tmp_path / "r.csv")]) == 0
+    assert main([*argv, "--out", str(tmp_path / "r.parquet")]) == 0
+    rows = list(csv.DictReader((tmp_path / "r.csv").open()))
+    table = pq.read_table(tmp_path / "r.parquet").to_pylist()
+    assert len(table) == len(rows) == 2
+    for got, want in zip(table, rows, strict=True):
+        assert list(got) == list(want)
+        assert {k: "" if v is None else str(v) for k, v in got.items()} == want
