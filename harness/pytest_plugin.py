@@ -199,7 +199,7 @@ def replay_command(scn: Any, link_url: str, failures_dir: str | Path | None) -> 
 
 
 @pytest.fixture
-def ffr_mission(request: pytest.FixtureRequest, ffr_link: Any, record_property: Any):
+def ffr_mission(request: pytest.FixtureRequest, ffr_link: Any):
     """``ffr_mission(scenario, record=True)`` -> (result, trace), with the run options applied."""
     from harness.loop import run_mission
     from sim_plant.robot import override
@@ -212,6 +212,11 @@ def ffr_mission(request: pytest.FixtureRequest, ffr_link: Any, record_property: 
     replays: list[tuple[Any, str, str]] = []
     request.node.stash[_REPLAYS] = replays
     count = 0
+
+    def record_property(name: str, value: object) -> None:
+        # the test's user properties, which every reporter gets (JUnit XML writes them as
+        # <property>); the record_property fixture would warn under pytest's default xunit2
+        request.node.user_properties.append((name, value))
 
     def run(scn: Any, record: bool = True) -> tuple[Any, Any]:
         nonlocal count

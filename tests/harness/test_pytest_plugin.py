@@ -39,9 +39,11 @@ def test_plugin_is_registered_by_entry_point(pytestconfig) -> None:
 def test_fixtures_properties_and_replay(pytester: pytest.Pytester) -> None:
     pytester.makepyfile(test_it=TEST_FILE)
     xml = pytester.path / "j.xml"
-    res = pytester.runpytest_subprocess("-p", "no:cacheprovider", f"--junitxml={xml}", "-o", "junit_family=xunit1")
+    # pytest's defaults (junit_family xunit2, as in a team's repository), warnings as errors
+    res = pytester.runpytest_subprocess("-p", "no:cacheprovider", f"--junitxml={xml}", "-W", "error")
     res.assert_outcomes(passed=1, failed=1, deselected=1)  # hil: deselected on the ctypes: link
     out = res.stdout.str()
+    assert "warning" not in out.lower(), out
     assert "ffr replay: ffr run --candle 0.62,2.32 --seed 0 --set firmware.front_stop_mm=60" in out
     cases = {c.get("name"): c for c in ET.parse(xml).getroot().iter("testcase")}
     props = {p.get("name"): p.get("value") for p in cases["test_home"].iter("property")}
