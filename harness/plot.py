@@ -18,12 +18,7 @@ from harness.atomic import atomic_path  # noqa: E402
 from harness.loop import I_CONTACT, I_STATE, Trace  # noqa: E402
 from harness.scenario import Scenario  # noqa: E402
 from harness.scoring import MissionResult  # noqa: E402
-
-_STATE_COLORS = {
-    "FOLLOW": "#1f77b4", "TURN": "#9467bd", "FORWARD": "#17becf", "ENTER": "#2ca02c",
-    "SCAN": "#bcbd22", "APPROACH": "#ff7f0e", "EXTINGUISH": "#d62728", "VERIFY": "#8c564b",
-    "TO_DOOR": "#e377c2", "EXIT": "#7f7f7f", "HOMING": "#393b79",
-}
+from harness.state_colors import STATE_COLORS, UNKNOWN_STATE_COLOR  # noqa: E402
 
 
 def draw_mission(ax: plt.Axes, scn: Scenario, trace: Trace, result: MissionResult | None = None) -> None:
@@ -55,7 +50,7 @@ def draw_mission(ax: plt.Axes, scn: Scenario, trace: Trace, result: MissionResul
             seg = xy[max(s - 1, 0):e]
             label = name if name not in seen else None
             seen.add(name)
-            ax.plot(seg[:, 0], seg[:, 1], color=_STATE_COLORS.get(name, "white"), lw=1.6, zorder=5,
+            ax.plot(seg[:, 0], seg[:, 1], color=STATE_COLORS.get(name, UNKNOWN_STATE_COLOR), lw=1.6, zorder=5,
                     label=label)
         contact = trace.i[:, I_CONTACT] > 0
         hits = np.flatnonzero(np.diff(contact.astype(np.int8)) > 0) + 1

@@ -23,6 +23,7 @@ from ffr_link.abi import STATE_NAMES
 from harness.loop import I_CONTACT, I_FAN, I_PWM_L, I_PWM_R, I_SENS, I_STATE, Trace
 from harness.scenario import Scenario
 from harness.scoring import MissionResult
+from harness.state_colors import STATE_COLORS
 from sim_plant.robot import IR_NAMES, RobotParams
 from sim_plant.sensors.channels import CH_ENC_L, CH_ENC_R, CH_FLAME_L, CH_FLAME_R, CH_IR, CH_LINE
 from sim_plant.sensors.gp2d12 import D_FAR, D_PEAK, distance_to_mv
@@ -30,12 +31,6 @@ from sim_plant.sensors.gp2d12 import D_FAR, D_PEAK, distance_to_mv
 DEFAULT_FPS = 15.0
 DEFAULT_CHART_HZ = 25.0
 
-# The 2D picture's state colours (harness/plot.py; a test keeps them equal) so both read alike.
-STATE_COLORS = {
-    "IDLE": "#aaaaaa", "FOLLOW": "#1f77b4", "TURN": "#9467bd", "FORWARD": "#17becf", "ENTER": "#2ca02c",
-    "SCAN": "#bcbd22", "APPROACH": "#ff7f0e", "EXTINGUISH": "#d62728", "VERIFY": "#8c564b",
-    "TO_DOOR": "#e377c2", "EXIT": "#7f7f7f", "HOMING": "#393b79", "DONE": "#ffffff", "FAILED": "#ff0000",
-}
 
 # Inverse of the GP2D12 curve on its far branch (8 cm .. 80 cm), by table:
 # the model's curve is monotone there, so interpolation is exact to the grid.

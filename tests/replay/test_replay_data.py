@@ -152,9 +152,11 @@ def test_robot_model_matches_the_robot_file() -> None:
     assert len(m["mesh"]["facecolor"]) == len(m["mesh"]["i"])
 
 
-def test_state_colours_match_the_2d_picture() -> None:
-    from harness.plot import _STATE_COLORS
-    from harness.replay.data import STATE_COLORS
+def test_one_state_colour_table_serves_the_2d_picture_and_the_replay() -> None:
+    import harness.plot
+    import harness.replay.data
+    from harness.state_colors import STATE_COLORS
 
-    assert {k: STATE_COLORS[k] for k in _STATE_COLORS} == _STATE_COLORS
+    assert harness.plot.STATE_COLORS is STATE_COLORS is harness.replay.data.STATE_COLORS
     assert set(STATE_COLORS) == set(STATE_NAMES)
+    assert len(set(STATE_COLORS.values())) == len(STATE_COLORS)  # every state told apart
