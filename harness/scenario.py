@@ -66,8 +66,9 @@ class Scenario:
 
 
 def default_start(arena: Arena) -> tuple[float, float, float]:
-    """Centre of the home circle, facing +y (up the east hallway of the 2004 arena)."""
-    return arena.home_center[0], arena.home_center[1], math.pi / 2
+    """Centre of the home circle, facing the arena file's ``[home] heading_deg`` (default +y: up the
+    east hallway of the 2004 arena)."""
+    return arena.home_center[0], arena.home_center[1], arena.home_heading
 
 
 def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = None,

@@ -99,6 +99,8 @@ class Arena:
     hallways: list[Hallway]
     # Which edition's candle placement rule ``check_candle`` follows (PLACEMENT_RULES).
     placement: str = "entry-depth"
+    # The default start heading in the home circle (rad from +x; ``[home] heading_deg``, default 90).
+    home_heading: float = math.pi / 2
     # Tolerance the walls were jittered by (0: the file's arena as drawn; sim_plant/arena_jitter.py).
     jitter: float = 0.0
     # Derived arrays for the compiled kernels.
@@ -348,6 +350,7 @@ def load_arena(path: str | Path | None = None) -> Arena:
         home_center=home.point("center"), home_radius=home.number("radius", positive=True),
         walls=walls, rooms=sorted(rooms, key=lambda rm: rm.id), hallways=hallways,
         placement=placement,
+        home_heading=math.radians(home.number("heading_deg", 90.0)),
     )
     validate_arena(arena, [next(i for i, r in enumerate(root.table["rooms"]) if r.get("id") == rm.id)
                            for rm in arena.rooms])
