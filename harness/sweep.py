@@ -241,7 +241,8 @@ def run_job(job: dict[str, Any]) -> dict[str, Any]:
         row |= {"start_x": scn.start[0], "start_y": scn.start[1], "start_heading_deg": math.degrees(scn.start[2])}
         res, _ = run_mission(scn, _link(job["link"]), record=False)
     except FfrInputError as exc:
-        return row | {"outcome": "error", "success": False, "detail": str(exc)}
+        blank = {k: None for k in ROW_FIELDS if k not in row}  # every column there, as for a mission that ran
+        return row | blank | {"outcome": "error", "success": False, "detail": str(exc)}
     return row | {
         "outcome": res.outcome, "success": res.outcome == "home" and res.wall_contacts == 0,
         "detail": res.detail, "time_to_extinguish_s": res.time_to_extinguish_s,

@@ -121,6 +121,9 @@ def _check(args: argparse.Namespace) -> None:
     for g, k, v in args.settings:
         if g == "robot":
             robot = override(robot, k, v, "--set")
+    if isinstance(args.start, tuple):
+        from harness.start_pose import check_start
+        check_start(arena, robot, args.start, "--start", "--start")
     for p in args.param:
         for v in p.values:
             if p.group == "firmware":
