@@ -305,17 +305,30 @@ def _polygon(r: _Reader, key: str) -> np.ndarray:
     return arr
 
 
+def _only(r: _Reader, known: set[str]) -> None:
+    """Unknown keys are errors: a misspelt field must never quietly fall back to its default."""
+    unknown = sorted(set(r.table) - known)
+    if unknown:
+        raise FfrInputError(r.source, r._name(unknown[0]), r.table[unknown[0]],
+                            f"unknown field (known: {', '.join(sorted(known))})")
+
+
 def load_arena(path: str | Path | None = None) -> Arena:
     p = Path(path) if path is not None else DEFAULT_ARENA
     src = str(p)
     root = _Reader(src, read_toml(p))
+    _only(root, {"arena", "home", "walls", "rooms", "hallways"})
     a = root.sub("arena")
+    _only(a, {"name", "size", "wall_height", "line_width", "candle_circle_radius", "candle_min_depth",
+              "candle_radius", "flame_height", "placement"})
     home = root.sub("home")
+    _only(home, {"center", "radius", "heading_deg"})
     size = a.point("size")
     if size[0] <= 0 or size[1] <= 0:
         raise FfrInputError(src, "arena.size", list(size), "must be positive")
     walls = []
     for w in root.tables("walls"):
+        _only(w, {"name", "a", "b", "t"})
         wa, wb = w.point("a"), w.point("b")
         if wa == wb:
             raise FfrInputError(src, w._name("b"), list(wb), "wall has zero length")
@@ -323,6 +336,7 @@ def load_arena(path: str | Path | None = None) -> Arena:
     rooms = []
     seen: set[int] = set()
     for r in root.tables("rooms"):
+        _only(r, {"id", "name", "polygon", "door", "default_candle"})
         rid = r.get("id")
         if isinstance(rid, bool) or not isinstance(rid, int) or rid < 1 or rid in seen:
             raise FfrInputError(src, r._name("id"), rid, "must be a unique integer >= 1")
@@ -334,8 +348,10 @@ def load_arena(path: str | Path | None = None) -> Arena:
         door_t = ((float(door[0][0]), float(door[0][1])), (float(door[1][0]), float(door[1][1])))
         rooms.append(Room(rid, r.string("name", f"room{rid}"), _polygon(r, "polygon"), door_t,
                           r.point("default_candle")))
-    hallways = [Hallway(h.string("name", "hallway"), _polygon(h, "polygon"))
-                for h in root.tables("hallways")]
+    hallways = []
+    for h in root.tables("hallways"):
+        _only(h, {"name", "polygon"})
+        hallways.append(Hallway(h.string("name", "hallway"), _polygon(h, "polygon")))
     placement = a.string("placement", "entry-depth")
     if placement not in PLACEMENT_RULES:
         raise FfrInputError(src, "arena.placement", placement, f"expected one of {', '.join(PLACEMENT_RULES)}")
@@ -428,3 +444,54 @@ def _room_gap(arena: Arena, rm: Room, reach: float, step: float = 0.01,
                 continue
             return x, y
     return None
+
+
+def describe(arena: Arena) -> str:
+    """The arena's measures in cm, as docs/arena.md quotes them (``python -m sim_plant.arena [FILE]``)."""
+    from sim_plant.errors import CandlePlacementError
+
+    lines = [f"{arena.name} ({arena.source})",
+             f"outer square {arena.size[0] * 100:.1f} x {arena.size[1] * 100:.1f} cm, "
+             f"walls {min(w.t for w in arena.walls) * 100:.2f}-{max(w.t for w in arena.walls) * 100:.2f} cm thick, "
+             f"placement rule {arena.placement!r}",
+             f"home circle at ({arena.home_center[0] * 100:.1f}, {arena.home_center[1] * 100:.1f}) cm, "
+             f"radius {arena.home_radius * 100:.1f} cm, start heading {math.degrees(arena.home_heading):.0f} deg",
+             "hallway widths (cm): " + ", ".join(
+                 f"{h.name} {min(np.ptp(h.polygon[:, 0]), np.ptp(h.polygon[:, 1])) * 100:.1f}"
+                 for h in arena.hallways)]
+    from sim_plant.arena_jitter import MAX_JITTER, MERGE_GAP, _axis_knots
+
+    for axis in (0, 1):
+        knots = _axis_knots(arena, axis)
+        lines.append(f"jitter: {'xy'[axis]} lines at " + ", ".join(
+            (f"{c * 100:.1f}" if h <= 0.0105 else f"{(c - h) * 100:.1f}-{(c + h) * 100:.1f}")
+            + (" fixed" if fixed else "")
+            for c, h, fixed in knots) + " cm")
+    lines.append(f"jitter: lines closer than {MERGE_GAP * 100:.0f} cm move as one; at most {MAX_JITTER * 100:.0f} cm")
+    saved = arena.placement
+    try:
+        for r in arena.rooms:
+            verdict = []
+            for rule in PLACEMENT_RULES:
+                arena.placement = rule
+                try:
+                    arena.check_candle(*r.default_candle)
+                    verdict.append(f"{rule}: legal")
+                except CandlePlacementError as exc:
+                    verdict.append(f"{rule}: refused ({exc.rule})")
+            lines.append(f"room {r.id} {r.name}: door {math.dist(*r.door) * 100:.1f} cm, default candle "
+                         f"({r.default_candle[0] * 100:.1f}, {r.default_candle[1] * 100:.1f}) cm, "
+                         + "; ".join(verdict))
+    finally:
+        arena.placement = saved
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":
+    import sys
+
+    try:
+        print(describe(load_arena(sys.argv[1] if len(sys.argv) > 1 else None)))
+    except FfrInputError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        sys.exit(2)

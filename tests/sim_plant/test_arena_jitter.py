@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -132,6 +133,17 @@ def test_home_in_a_room_refused(tmp_path: Path) -> None:
     text = ARENAS_TEXT_2004.replace("center = [2.11, 1.17]", "center = [1.5, 1.6]")
     with pytest.raises(FfrInputError, match=r"home\.center.*hallway"):
         _load_text(tmp_path, text)
+
+
+@pytest.mark.parametrize(("old", "new", "needle"), [
+    ('placement = "entry-depth"', 'placment = "door-line"', "arena.placment"),
+    ("[home]\n", "[home]\nheading = 180\n", "home.heading"),
+    ('name = "br_left"\n', 'name = "br_left"\nthick = 0.02\n', "walls[13].thick"),
+])
+def test_unknown_arena_field_refused(tmp_path: Path, old: str, new: str, needle: str) -> None:
+    assert old in ARENAS_TEXT_2004
+    with pytest.raises(FfrInputError, match=re.escape(needle) + ".*unknown field"):
+        _load_text(tmp_path, ARENAS_TEXT_2004.replace(old, new, 1))
 
 
 def test_unknown_placement_rule_refused(tmp_path: Path) -> None:
