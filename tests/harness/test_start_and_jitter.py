@@ -5,15 +5,18 @@ from __future__ import annotations
 import csv
 import json
 import math
+import os
 import shlex
 from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
 
 from harness import sweep as sw
 from harness.cli import main
 from harness.loop import run_mission
+from harness.properties import any_start_poses
 from harness.scenario import default_start, load_scenario, make_scenario, scenario_to_toml
 from harness.start_pose import JITTER_STREAM, START_STREAM, draw_start, start_problem, stream
 from sim_plant.arena import DEFAULT_ARENA, load_arena
@@ -47,6 +50,13 @@ def test_random_starts_cover_the_home_circle_and_every_heading(arena) -> None:
     sectors = np.bincount((np.degrees(poses[:, 2]) // 30).astype(int), minlength=12)
     assert len(sectors) == 12 and sectors.min() > 1500 / 12 * 0.6
     assert ((poses[:, 2] >= 0) & (poses[:, 2] < 2 * math.pi)).all()
+
+
+@settings(max_examples=200, deadline=None, derandomize=bool(os.environ.get("CI")))
+@given(pose=any_start_poses(ARENA_2001))
+def test_any_start_poses_strategy_draws_allowed_poses(pose: tuple[float, float, float]) -> None:
+    assert start_problem(ARENA_2001, ROBOT, pose) is None and 0.0 <= pose[2] < 2 * math.pi
+    make_scenario(arena=ARENA_2001, room=1, start=pose)  # accepted as an explicit start
 
 
 def test_explicit_start_checked() -> None:
