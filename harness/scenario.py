@@ -75,12 +75,13 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
                   room: int | None = None, candle: tuple[float, float] | None = None,
                   seed: int = 0, noise: str | NoiseProfile = "none",
                   firmware: dict[str, Any] | None = None, robot_overrides: dict[str, Any] | None = None,
-                  start: tuple[float, float, float] | None = None, timing: Timing | None = None,
+                  start: StartSpec = None, timing: Timing | None = None,
                   name: str | None = None, source: str = "command line",
                   stop_on_contact: bool = False, events: list[Event] | None = None,
                   arena_jitter: float = 0.0) -> Scenario:
     """A mission. ``start``: a pose (checked: centre in the home circle, footprint clear of the walls),
-    ``"random"`` (drawn from the seed's start stream) or None (the home circle's centre, facing +y).
+    ``"random"`` (drawn from the seed's start stream) or None (the home circle's centre, facing the
+    arena file's start heading).
     ``arena_jitter`` > 0: the arena's walls and doors moved within that many metres, drawn from the
     seed's jitter stream; the candle is carried with them (sim_plant/arena_jitter.py)."""
     arena = arena or load_arena()
@@ -217,7 +218,8 @@ def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec
                                     "give either start.random = true or a pose (x, y, heading_deg)")
             file_start = "random"
         else:
-            file_start = (s.number("x"), s.number("y"), math.radians(s.number("heading_deg", 90.0)))
+            file_start = (s.number("x"), s.number("y"),
+                          math.radians(s.number("heading_deg", math.degrees(arena.home_heading))))
     jitter = r.number("arena_jitter", 0.0, lo=0.0)
     if arena_jitter is not None:
         jitter = arena_jitter
