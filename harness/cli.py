@@ -3,6 +3,7 @@
     ffr run [--room N | --candle X,Y | --scenario FILE.toml] [--seed S] [--link URL]
             [--json FILE|-] [--plot FILE.png] [--replay FILE.html] [--noise NAME] [--set KEY=VALUE ...]
     ffr table1 [--seed S] [--link URL] [--json FILE|-] [--plot FILE.png] [--replay-dir DIR]
+    every command that runs missions also takes [--start X,Y,DEG|random] [--arena-jitter METRES]
 
 Exit status: 0 every mission ended "home"; 1 a mission ended otherwise;
 2 bad input (scenario, arena or robot file, argument) or a firmware/link
@@ -55,6 +56,45 @@ def _candle(text: str) -> tuple[float, float]:
     return x, y
 
 
+def _start(text: str) -> tuple[float, float, float] | str:
+    """``X,Y,DEG`` (metres, degrees counter-clockwise from +x) or ``random``; returns radians."""
+    if text == "random":
+        return text
+    parts = text.split(",")
+    try:
+        if len(parts) != 3:
+            raise ValueError
+        x, y, deg = (float(v) for v in parts)
+        if not all(math.isfinite(v) for v in (x, y, deg)):
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"--start = {text!r}: expected X,Y,DEG (metres, degrees) or random") from None
+    return x, y, math.radians(deg)
+
+
+def _jitter(text: str) -> float:
+    from sim_plant.arena_jitter import MAX_JITTER
+    try:
+        v = float(text)
+        if not (math.isfinite(v) and 0.0 <= v <= MAX_JITTER):
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"--arena-jitter = {text!r}: expected metres in 0 .. {MAX_JITTER}") from None
+    return v
+
+
+def add_arena_options(sp: argparse.ArgumentParser) -> None:
+    """``--start`` and ``--arena-jitter``: on every command that runs missions."""
+    sp.add_argument("--start", type=_start, default=None, metavar="X,Y,DEG|random",
+                    help="start pose in the home circle (m, m, degrees from +x), or random: uniform in the "
+                         "home circle, any heading, drawn from the seed (default: its centre, facing +y)")
+    sp.add_argument("--arena-jitter", type=_jitter, default=None, metavar="METRES",
+                    help="move every wall line and door edge by up to this much, drawn from the seed "
+                         "(e.g. 0.025; default 0 or the scenario's)")
+
+
 def _seed(text: str) -> int:
     try:
         v = int(text)
@@ -94,6 +134,7 @@ def build_parser() -> argparse.ArgumentParser:
         sp.add_argument("--robot", default=None, help="robot TOML file (default: the shipped robot)")
         sp.add_argument("--set", dest="settings", type=_setting, action="append", default=[],
                         metavar="KEY=VALUE", help="firmware.NAME=V or robot.PATH=V (repeatable)")
+        add_arena_options(sp)
 
     def where(sp: argparse.ArgumentParser) -> None:
         g = sp.add_mutually_exclusive_group()
@@ -126,7 +167,7 @@ def _scenarios(args: argparse.Namespace, rooms: Sequence[int | None]) -> list[An
     ro = {k: v for g, k, v in args.settings if g == "robot"}
     out = []
     if getattr(args, "scenario", None):
-        scn = load_scenario(args.scenario, seed=args.seed)
+        scn = load_scenario(args.scenario, seed=args.seed, start=args.start, arena_jitter=args.arena_jitter)
         if args.noise:
             from sim_plant.sensors import load_noise_profile
             scn.noise = load_noise_profile(args.noise)
@@ -146,7 +187,8 @@ def _scenarios(args: argparse.Namespace, rooms: Sequence[int | None]) -> list[An
         out.append(make_scenario(arena=arena, robot=robot, room=room,
                                  candle=getattr(args, "candle", None), seed=args.seed or 0,
                                  noise=args.noise or "none", firmware=fw, robot_overrides=ro,
-                                 source="--set" if args.settings else "command line"))
+                                 source="--set" if args.settings else "command line",
+                                 start=args.start, arena_jitter=args.arena_jitter or 0.0))
     return out
 
 

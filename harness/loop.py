@@ -208,6 +208,7 @@ class Mission:
             detail=detail, scenario=scn.name, link=link.url, sim_time_s=t,
             final_pose=(plant.x, plant.y, plant.theta),
             link_counters=(link.link_counters() - counters0).as_dict(),
+            start_pose=scn.start, arena_jitter=scn.arena_jitter,
         )
         result.score = contest_score(self.rules, outcome, ext, rooms_searched, plant.contacts)
         n = k if record else 0

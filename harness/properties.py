@@ -133,6 +133,26 @@ def start_poses(draw: st.DrawFn, arena: Arena | None = None, env: Envelope = ENV
     return hx + r * math.cos(a), hy + r * math.sin(a), math.radians(90.0 + h)
 
 
+@st.composite
+def any_start_poses(draw: st.DrawFn, arena: Arena | None = None,
+                    robot: Any = None) -> tuple[float, float, float]:
+    """A start pose anywhere in the home circle, any heading (issue 13): the centre uniform over the
+    disc's area, the heading uniform in [0, 360) degrees, poses whose footprint touches a wall rejected
+    (as ``--start random`` draws them, harness/start_pose.py)."""
+    from harness.start_pose import start_problem
+    from sim_plant.robot import load_robot
+
+    arena = arena or load_arena()
+    robot = robot or load_robot()
+    hx, hy = arena.home_center
+    r = arena.home_radius * math.sqrt(draw(st.floats(0.0, 1.0)))
+    a = draw(st.floats(0.0, 2.0 * math.pi, exclude_max=True))
+    th = draw(st.floats(0.0, 2.0 * math.pi, exclude_max=True))
+    pose = (hx + r * math.cos(a), hy + r * math.sin(a), th)
+    assume(start_problem(arena, robot, pose) is None)
+    return pose
+
+
 def _frac(draw: st.DrawFn, hi: float) -> float:
     """0 .. hi; 0 is where shrinking goes."""
     return draw(st.floats(0.0, hi)) if hi > 0 else 0.0

@@ -178,6 +178,7 @@ def replay_command(scn: Any, link_url: str, failures_dir: str | Path | None) -> 
     except Exception:  # noqa: BLE001 - an inline or file profile: not nameable
         named = False
     simple = (not scn.events and scn.start == default_start(scn.arena) and named and not scn.robot_file
+              and not scn.arena_jitter
               and scn.arena.source == str(DEFAULT_ARENA) and not scn.stop_on_contact
               and scn.timing == type(scn.timing)())
     link = [] if link_url == "ctypes:" else ["--link", link_url]

@@ -16,14 +16,18 @@ from pathlib import Path
 from typing import Any
 
 from harness.events import Event, parse_events
+from harness.start_pose import JITTER_STREAM, START_STREAM, check_start, draw_start, stream
 from sim_plant.arena import DEFAULT_ARENA, Arena, _Reader, load_arena, read_toml
+from sim_plant.arena_jitter import check_jitter, jitter_arena
 from sim_plant.errors import FfrInputError
 from sim_plant.robot import DEFAULT_ROBOT, RobotParams, load_robot, override
 from sim_plant.sensors import NoiseProfile, load_noise_profile
 from sim_plant.sensors.noise import profile_from_table, profile_to_table
 
-_TOP_KEYS = {"name", "seed", "noise", "arena", "robot", "candle", "start", "timing", "firmware",
+_TOP_KEYS = {"name", "seed", "noise", "arena", "arena_jitter", "robot", "candle", "start", "timing", "firmware",
              "robot_overrides", "events", "stop_on_contact"}
+
+StartSpec = tuple[float, float, float] | str | None  # a pose (x, y m, heading rad), "random", or None (default)
 
 
 @dataclass
@@ -52,25 +56,40 @@ class Scenario:
     stop_on_contact: bool = False
     events: list[Event] = field(default_factory=list)
     robot_file: str | None = None  # the robot file before robot_overrides (None: the default)
+    arena_jitter: float = 0.0  # m: ``arena`` is the file's arena jittered by this much (from the seed)
+    candle_nominal: tuple[float, float] | None = None  # the candle asked for, before the jitter carried it
+    start_random: bool = False  # ``start`` was drawn from the seed (docs/scenarios.md)
+
+    def requested_candle(self) -> tuple[float, float]:
+        """The candle position as asked for (in the unjittered arena): what a saved scenario records."""
+        return self.candle_nominal if self.candle_nominal is not None else self.candle
 
 
 def default_start(arena: Arena) -> tuple[float, float, float]:
-    """Centre of the home circle, facing +y (up the east hallway of the 2004 arena)."""
-    return arena.home_center[0], arena.home_center[1], math.pi / 2
+    """Centre of the home circle, facing the arena file's ``[home] heading_deg`` (default +y: up the
+    east hallway of the 2004 arena)."""
+    return arena.home_center[0], arena.home_center[1], arena.home_heading
 
 
 def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = None,
                   room: int | None = None, candle: tuple[float, float] | None = None,
                   seed: int = 0, noise: str | NoiseProfile = "none",
                   firmware: dict[str, Any] | None = None, robot_overrides: dict[str, Any] | None = None,
-                  start: tuple[float, float, float] | None = None, timing: Timing | None = None,
+                  start: StartSpec = None, timing: Timing | None = None,
                   name: str | None = None, source: str = "command line",
-                  stop_on_contact: bool = False, events: list[Event] | None = None) -> Scenario:
+                  stop_on_contact: bool = False, events: list[Event] | None = None,
+                  arena_jitter: float = 0.0) -> Scenario:
+    """A mission. ``start``: a pose (checked: centre in the home circle, footprint clear of the walls),
+    ``"random"`` (drawn from the seed's start stream) or None (the home circle's centre, facing the
+    arena file's start heading).
+    ``arena_jitter`` > 0: the arena's walls and doors moved within that many metres, drawn from the
+    seed's jitter stream; the candle is carried with them (sim_plant/arena_jitter.py)."""
     arena = arena or load_arena()
     robot = robot or load_robot()
     robot_file = None if robot.source == str(DEFAULT_ROBOT) else robot.source
     for key, value in (robot_overrides or {}).items():
         robot = override(robot, key, value, source)
+    named = room is not None or candle is None
     if candle is not None:
         rm = arena.check_candle(candle[0], candle[1], source=source)
         room_id = rm.id
@@ -78,14 +97,29 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
         room_id = 1 if room is None else room
         rm = arena.room(room_id)
         candle = rm.default_candle
+    nominal = (float(candle[0]), float(candle[1]))
+    check_jitter(arena, arena_jitter, source, "arena_jitter")
+    if arena_jitter > 0.0:
+        arena, warp = jitter_arena(arena, float(arena_jitter), stream(seed, JITTER_STREAM), candle=nominal)
+        candle = warp.point(nominal)
+    if isinstance(start, str):
+        if start != "random":
+            raise FfrInputError(source, "start", start, "expected X,Y,DEG or random")
+        pose = draw_start(arena, robot, stream(seed, START_STREAM))
+    elif start is None:
+        pose = default_start(arena)
+    else:
+        pose = (float(start[0]), float(start[1]), float(start[2]))
+        check_start(arena, robot, pose, source)
     prof = noise if isinstance(noise, NoiseProfile) else load_noise_profile(noise)
     return Scenario(
-        name=name or (f"room{room_id}" if room is not None or candle is None else "candle"),
+        name=name or (f"room{room_id}" if named else "candle"),
         source=source, arena=arena, robot=robot, candle=(float(candle[0]), float(candle[1])),
-        room=room_id, start=start or default_start(arena), seed=seed, noise=prof,
+        room=room_id, start=pose, seed=seed, noise=prof,
         firmware=dict(firmware or {}), robot_overrides=dict(robot_overrides or {}),
         timing=timing or Timing(), stop_on_contact=stop_on_contact, events=list(events or []),
-        robot_file=robot_file,
+        robot_file=robot_file, arena_jitter=float(arena_jitter),
+        candle_nominal=nominal if arena_jitter > 0.0 else None, start_random=start == "random",
     )
 
 
@@ -121,8 +155,9 @@ def _known_only(tab: _Reader, name: str, known: set[str]) -> None:
                             f"unknown field ({hint}known: {', '.join(sorted(known))})")
 
 
-def load_scenario(path: str | Path, *, seed: int | None = None) -> Scenario:
-    """Load a scenario file; ``seed`` (from the CLI) overrides the file's."""
+def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec = None,
+                  arena_jitter: float | None = None) -> Scenario:
+    """Load a scenario file; ``seed``, ``start`` and ``arena_jitter`` (from the CLI) override the file's."""
     p = Path(path)
     src = str(p)
     data = read_toml(p)
@@ -169,11 +204,25 @@ def load_scenario(path: str | Path, *, seed: int | None = None) -> Scenario:
         arena.check_candle(*candle, source=src)
     elif room is not None:
         arena.room(room)  # raises with the known ids
-    start = None
+    file_start: StartSpec = None
     if "start" in data:
         s = r.sub("start")
-        _known_only(s, "start", {"x", "y", "heading_deg"})
-        start = (s.number("x"), s.number("y"), math.radians(s.number("heading_deg", 90.0)))
+        _known_only(s, "start", {"x", "y", "heading_deg", "random"})
+        rnd = s.get("random", False)
+        if not isinstance(rnd, bool):
+            raise FfrInputError(src, "start.random", rnd, "must be true or false")
+        if rnd:
+            extra = sorted(set(s.table) - {"random"})
+            if extra:
+                raise FfrInputError(src, f"start.{extra[0]}", s.table[extra[0]],
+                                    "give either start.random = true or a pose (x, y, heading_deg)")
+            file_start = "random"
+        else:
+            file_start = (s.number("x"), s.number("y"),
+                          math.radians(s.number("heading_deg", math.degrees(arena.home_heading))))
+    jitter = r.number("arena_jitter", 0.0, lo=0.0)
+    if arena_jitter is not None:
+        jitter = arena_jitter
     timing = _timing(r.sub("timing")) if "timing" in data else Timing()
     fw = r.sub("firmware").table if "firmware" in data else {}
     ro = r.sub("robot_overrides").table if "robot_overrides" in data else {}
@@ -184,8 +233,8 @@ def load_scenario(path: str | Path, *, seed: int | None = None) -> Scenario:
     name = r.string("name", p.stem)
     return make_scenario(arena=arena, robot=robot, room=room, candle=candle,
                          seed=file_seed if seed is None else seed, noise=noise, firmware=fw,
-                         robot_overrides=ro, start=start, timing=timing, name=name, source=src,
-                         stop_on_contact=stop, events=events)
+                         robot_overrides=ro, start=file_start if start is None else start, timing=timing,
+                         name=name, source=src, stop_on_contact=stop, events=events, arena_jitter=jitter)
 
 
 # -- writing -------------------------------------------------------------------
@@ -240,11 +289,16 @@ def scenario_to_toml(scn: Scenario, comment: str = "") -> str:
         lines.append(f"arena = {_toml_value(str(Path(scn.arena.source).resolve()))}")
     if scn.robot_file:
         lines.append(f"robot = {_toml_value(str(Path(scn.robot_file).resolve()))}")
+    if scn.arena_jitter > 0.0:
+        lines.append(f"arena_jitter = {_toml_value(float(scn.arena_jitter))}  # walls moved, drawn from the seed")
     lines.append(f"stop_on_contact = {_toml_value(scn.stop_on_contact)}")
     table = profile_to_table(scn.noise)
     if not table:
         lines.append('noise = "none"')
-    lines += ["", "[candle]", f"position = {_toml_value([scn.candle[0], scn.candle[1]])}"]
+    cx, cy = scn.requested_candle()
+    lines += ["", "[candle]", f"position = {_toml_value([cx, cy])}"]
+    if scn.start_random:
+        lines += ["", "# drawn by start.random = true from the seed: the pose it drew"]
     lines += ["", "[start]", f"x = {_toml_value(float(scn.start[0]))}", f"y = {_toml_value(float(scn.start[1]))}",
               f"heading_deg = {_toml_value(_degrees_exact(float(scn.start[2])))}"]
     tm = scn.timing

@@ -56,6 +56,8 @@ class MissionResult:
     final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
     # what crossed the link during this mission (LinkCounters.as_dict(); docs/protocol.md)
     link_counters: dict[str, int] = field(default_factory=dict)
+    start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)  # x, y (m), heading (rad) the mission started at
+    arena_jitter: float = 0.0  # m, the arena's walls moved by up to this (drawn from the seed)
     extra: dict[str, Any] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
@@ -81,6 +83,9 @@ class MissionResult:
             "sim_time_s": r(self.sim_time_s),
             "final_pose": [round(self.final_pose[0], 4), round(self.final_pose[1], 4),
                            round(math.degrees(self.final_pose[2]), 2)],
+            "start_pose": [round(self.start_pose[0], 4), round(self.start_pose[1], 4),
+                           round(math.degrees(self.start_pose[2]), 2)],
+            "arena_jitter": self.arena_jitter,
         }
         out.update(self.extra)
         return out

@@ -49,9 +49,13 @@ import numpy as np
 from harness.atomic import write_bytes_atomic
 from sim_plant.errors import FfrInputError
 
-ROW_FIELDS = ["id", "room", "candle_x", "candle_y", "seed", "noise", "outcome", "success", "detail",
+ROW_FIELDS = ["id", "room", "candle_x", "candle_y", "seed", "noise", "start_x", "start_y", "start_heading_deg",
+              "arena_jitter", "jitter_seed", "outcome", "success", "detail",
               "time_to_extinguish_s", "total_time_s", "wall_contacts", "min_wall_clearance_m",
               "path_length_m", "sim_time_s", "replay"]
+
+
+SHOW_REPLAYS = 10  # failures whose replay command the summary prints (all are in --out and --json)
 
 
 @dataclass(frozen=True)
@@ -117,6 +121,8 @@ class SweepSpec:
     link: str = "ctypes:"
     arena: str | None = None
     robot_file: str | None = None
+    start: tuple[float, float, float] | str | None = None  # a pose, "random" (from each mission's seed), None
+    arena_jitter: float = 0.0  # m: each mission's arena jittered, drawn from its seed
 
 
 def candle_positions(spec: SweepSpec) -> list[tuple[int, float, float]]:
@@ -163,7 +169,9 @@ def build_jobs(spec: SweepSpec) -> list[dict[str, Any]]:
         ro = dict(spec.robot) | {k.partition(".")[2]: v for k, v in params.items() if k.startswith("robot.")}
         jobs.append({"id": len(jobs), "room": room, "candle": (cx, cy), "seed": seed, "noise": spec.noise,
                      "firmware": fw, "robot": ro, "params": params, "link": spec.link,
-                     "arena": spec.arena, "robot_file": spec.robot_file})
+                     "arena": spec.arena, "robot_file": spec.robot_file,
+                     "start": list(spec.start) if isinstance(spec.start, tuple) else spec.start,
+                     "arena_jitter": spec.arena_jitter})
     return jobs
 
 
@@ -178,6 +186,14 @@ def replay_command(job: dict[str, Any]) -> str:
             argv += ["--set", f"{group}.{k}={json.dumps(v)}"]
     if job.get("arena"):
         argv += ["--arena", job["arena"]]
+    start = job.get("start")
+    if start == "random":
+        argv += ["--start", "random"]
+    elif start is not None:
+        from harness.scenario import _degrees_exact
+        argv += ["--start", f"{start[0]!r},{start[1]!r},{_degrees_exact(start[2])!r}"]
+    if job.get("arena_jitter"):
+        argv += ["--arena-jitter", repr(job["arena_jitter"])]
     if job.get("robot_file"):
         argv += ["--robot", job["robot_file"]]
     if job.get("link", "ctypes:") != "ctypes:":
@@ -209,18 +225,24 @@ def run_job(job: dict[str, Any]) -> dict[str, Any]:
     from harness.loop import run_mission
     from harness.scenario import make_scenario
 
+    jitter = float(job.get("arena_jitter") or 0.0)
     row: dict[str, Any] = {"id": job["id"], "room": job["room"], "candle_x": job["candle"][0],
                            "candle_y": job["candle"][1], "seed": job["seed"], "noise": job["noise"],
+                           "arena_jitter": jitter, "jitter_seed": job["seed"] if jitter > 0.0 else None,
                            "replay": replay_command(job)}
     row |= job["params"]
+    start = job.get("start")
     try:
         arena, robot = _world(job.get("arena"), job.get("robot_file"))
         scn = make_scenario(arena=arena, robot=robot, candle=tuple(job["candle"]), seed=job["seed"],
                             noise=job["noise"], firmware=job["firmware"], robot_overrides=job["robot"],
-                            source="sweep")
+                            source="sweep", start=tuple(start) if isinstance(start, list) else start,
+                            arena_jitter=jitter)
+        row |= {"start_x": scn.start[0], "start_y": scn.start[1], "start_heading_deg": math.degrees(scn.start[2])}
         res, _ = run_mission(scn, _link(job["link"]), record=False)
     except FfrInputError as exc:
-        return row | {"outcome": "error", "success": False, "detail": str(exc)}
+        blank = {k: None for k in ROW_FIELDS if k not in row}  # every column there, as for a mission that ran
+        return row | blank | {"outcome": "error", "success": False, "detail": str(exc)}
     return row | {
         "outcome": res.outcome, "success": res.outcome == "home" and res.wall_contacts == 0,
         "detail": res.detail, "time_to_extinguish_s": res.time_to_extinguish_s,
@@ -493,8 +515,12 @@ def summary(rows: Sequence[dict[str, Any]], params: Sequence[Param] = (), wall_s
     if causes:
         lines.append("failure causes:")
         lines += [f"  {c:>5}  {k}" for k, c in causes.most_common()]
-        first = next(r for r in rows if not r["success"])
-        lines.append(f"replay the first: {first['replay']}")
+        failed = [r for r in rows if not r["success"]]
+        lines.append(f"replay the first: {failed[0]['replay']}")
+        if len(failed) > 1:
+            shown = failed[1:SHOW_REPLAYS]
+            lines.append(f"replay the next {len(shown)} of {len(failed) - 1} more failures:")
+            lines += [f"  {r['replay']}" for r in shown]
     for p in params:
         lines.append(f"{p.key}:")
         for label, rr in param_groups(rows, p):

@@ -76,6 +76,8 @@ def add_sweep_parser(sub: Any) -> None:
     sp.add_argument("--min-success", type=float, default=None, metavar="PCT",
                     help="exit 1 when fewer than PCT %% of the missions succeed")
     sp.add_argument("--no-progress", action="store_true", help="no progress bar")
+    from harness.cli import add_arena_options
+    add_arena_options(sp)
 
 
 def _check(args: argparse.Namespace) -> None:
@@ -119,6 +121,9 @@ def _check(args: argparse.Namespace) -> None:
     for g, k, v in args.settings:
         if g == "robot":
             robot = override(robot, k, v, "--set")
+    if isinstance(args.start, tuple):
+        from harness.start_pose import check_start
+        check_start(arena, robot, args.start, "--start", "--start")
     for p in args.param:
         for v in p.values:
             if p.group == "firmware":
@@ -148,6 +153,8 @@ def sweep_identity(args: argparse.Namespace, jobs: list[dict[str, Any]]) -> dict
         "--sweep-seed": args.sweep_seed if rnd_candles or rnd_params else None,
         "--set": [[g, k, v] for g, k, v in args.settings], "--link": args.link,
         "--arena": args.arena, "--robot": args.robot, "files": files,
+        "--start": list(args.start) if isinstance(args.start, tuple) else args.start,
+        "--arena-jitter": args.arena_jitter or 0.0,
         "missions": len(jobs), "jobs_sha256": store.jobs_digest(jobs),
     }
 
@@ -182,7 +189,7 @@ def run_sweep(args: argparse.Namespace) -> int:
         seeds=args.seeds, noise=args.noise, params=tuple(args.param), mode=args.mode, n_random=args.samples,
         sweep_seed=args.sweep_seed, firmware={k: v for g, k, v in args.settings if g == "firmware"},
         robot={k: v for g, k, v in args.settings if g == "robot"}, link=args.link, arena=args.arena,
-        robot_file=args.robot)
+        robot_file=args.robot, start=args.start, arena_jitter=args.arena_jitter or 0.0)
     jobs = sw.build_jobs(spec)
     if not jobs:
         raise UsageError("the sweep has no missions (no legal candle position?)")

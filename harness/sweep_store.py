@@ -24,7 +24,7 @@ from harness.atomic import write_bytes_atomic, write_text_atomic
 
 SIDECAR_SUFFIX = ".sweep.json"
 FORMAT = "ffr-sweep-rows/1"
-_INT_FIELDS = {"id", "room", "seed", "wall_contacts"}
+_INT_FIELDS = {"id", "room", "seed", "wall_contacts", "jitter_seed"}
 _STR_FIELDS = {"noise", "outcome", "detail", "replay"}
 
 

@@ -27,6 +27,13 @@ from sim_plant.geometry import (
 
 DEFAULT_ARENA = Path(__file__).parent / "data" / "arena_2004.toml"
 
+# Candle placement rules by rules edition (``[arena] placement`` in an arena file, docs/arena.md):
+# - "entry-depth": later editions' text: the candle's circle does not touch the doorway line, and
+#   the robot's front can move ``candle_min_depth`` (33 cm) into the room before reaching it;
+# - "door-line": the 2001 contest plan: the circle only must not touch the doorway line (a candle
+#   may stand just beside a door, as two of that plan's four candle targets do).
+PLACEMENT_RULES = ("entry-depth", "door-line")
+
 
 @dataclass(frozen=True)
 class Wall:
@@ -90,6 +97,12 @@ class Arena:
     walls: list[Wall]
     rooms: list[Room]
     hallways: list[Hallway]
+    # Which edition's candle placement rule ``check_candle`` follows (PLACEMENT_RULES).
+    placement: str = "entry-depth"
+    # The default start heading in the home circle (rad from +x; ``[home] heading_deg``, default 90).
+    home_heading: float = math.pi / 2
+    # Tolerance the walls were jittered by (0: the file's arena as drawn; sim_plant/arena_jitter.py).
+    jitter: float = 0.0
     # Derived arrays for the compiled kernels.
     wall_polys: np.ndarray = field(init=False, repr=False)
     wall_edges: np.ndarray = field(init=False, repr=False)
@@ -153,6 +166,8 @@ class Arena:
         if point_segment_distance(x, y, ax, ay, bx, by) < ring_outer + self.line_width / 2.0:
             raise CandlePlacementError(source, "candle", val, "circle-touches-doorway",
                                        f"its circle touches the doorway line of room {room.id}")
+        if self.placement == "door-line":
+            return room
         zone = room.entry_zone(self.candle_min_depth)
         if _circle_meets_convex(x, y, ring_outer, zone):
             raise CandlePlacementError(
@@ -290,17 +305,30 @@ def _polygon(r: _Reader, key: str) -> np.ndarray:
     return arr
 
 
+def _only(r: _Reader, known: set[str]) -> None:
+    """Unknown keys are errors: a misspelt field must never quietly fall back to its default."""
+    unknown = sorted(set(r.table) - known)
+    if unknown:
+        raise FfrInputError(r.source, r._name(unknown[0]), r.table[unknown[0]],
+                            f"unknown field (known: {', '.join(sorted(known))})")
+
+
 def load_arena(path: str | Path | None = None) -> Arena:
     p = Path(path) if path is not None else DEFAULT_ARENA
     src = str(p)
     root = _Reader(src, read_toml(p))
+    _only(root, {"arena", "home", "walls", "rooms", "hallways"})
     a = root.sub("arena")
+    _only(a, {"name", "size", "wall_height", "line_width", "candle_circle_radius", "candle_min_depth",
+              "candle_radius", "flame_height", "placement"})
     home = root.sub("home")
+    _only(home, {"center", "radius", "heading_deg"})
     size = a.point("size")
     if size[0] <= 0 or size[1] <= 0:
         raise FfrInputError(src, "arena.size", list(size), "must be positive")
     walls = []
     for w in root.tables("walls"):
+        _only(w, {"name", "a", "b", "t"})
         wa, wb = w.point("a"), w.point("b")
         if wa == wb:
             raise FfrInputError(src, w._name("b"), list(wb), "wall has zero length")
@@ -308,6 +336,7 @@ def load_arena(path: str | Path | None = None) -> Arena:
     rooms = []
     seen: set[int] = set()
     for r in root.tables("rooms"):
+        _only(r, {"id", "name", "polygon", "door", "default_candle"})
         rid = r.get("id")
         if isinstance(rid, bool) or not isinstance(rid, int) or rid < 1 or rid in seen:
             raise FfrInputError(src, r._name("id"), rid, "must be a unique integer >= 1")
@@ -319,8 +348,13 @@ def load_arena(path: str | Path | None = None) -> Arena:
         door_t = ((float(door[0][0]), float(door[0][1])), (float(door[1][0]), float(door[1][1])))
         rooms.append(Room(rid, r.string("name", f"room{rid}"), _polygon(r, "polygon"), door_t,
                           r.point("default_candle")))
-    hallways = [Hallway(h.string("name", "hallway"), _polygon(h, "polygon"))
-                for h in root.tables("hallways")]
+    hallways = []
+    for h in root.tables("hallways"):
+        _only(h, {"name", "polygon"})
+        hallways.append(Hallway(h.string("name", "hallway"), _polygon(h, "polygon")))
+    placement = a.string("placement", "entry-depth")
+    if placement not in PLACEMENT_RULES:
+        raise FfrInputError(src, "arena.placement", placement, f"expected one of {', '.join(PLACEMENT_RULES)}")
     arena = Arena(
         name=a.string("name", p.stem), source=src, size=size,
         wall_height=a.number("wall_height", positive=True),
@@ -331,8 +365,133 @@ def load_arena(path: str | Path | None = None) -> Arena:
         flame_height=a.number("flame_height", 0.175, positive=True),
         home_center=home.point("center"), home_radius=home.number("radius", positive=True),
         walls=walls, rooms=sorted(rooms, key=lambda rm: rm.id), hallways=hallways,
+        placement=placement,
+        home_heading=math.radians(home.number("heading_deg", 90.0)),
     )
-    for rm in arena.rooms:
-        idx = next(i for i, r in enumerate(root.table["rooms"]) if r.get("id") == rm.id)
-        arena.check_candle(*rm.default_candle, source=f"{src}: rooms[{idx}].default_candle")
+    validate_arena(arena, [next(i for i, r in enumerate(root.table["rooms"]) if r.get("id") == rm.id)
+                           for rm in arena.rooms])
     return arena
+
+
+def validate_arena(arena: Arena, room_index: list[int] | None = None) -> None:
+    """Raise FfrInputError unless the arena is one a mission can run in.
+
+    Every room closed by walls except across its doorway (points just outside
+    each side of its polygon lie in a wall or on the doorway's line), each
+    doorway an opening wider than its line, the home circle's centre in a
+    hallway and clear of the walls, every wall inside the outer square, and
+    every room's default candle legal under the arena's placement rule.
+    ``room_index[k]``: the file's index of ``arena.rooms[k]`` (for messages).
+    """
+    src = arena.source
+    w, h = arena.size
+    for k, poly in enumerate(arena.wall_polys):
+        if poly[:, 0].min() < -1e-9 or poly[:, 1].min() < -1e-9 or poly[:, 0].max() > w + 1e-9 \
+                or poly[:, 1].max() > h + 1e-9:
+            raise FfrInputError(src, f"walls[{k}]", arena.walls[k].name, "wall outside the arena's outer square")
+    reach = max(wl.t for wl in arena.walls) + arena.line_width
+    for k, rm in enumerate(arena.rooms):
+        idx = room_index[k] if room_index else k
+        (ax, ay), (bx, by) = rm.door
+        if math.hypot(bx - ax, by - ay) <= arena.line_width:
+            raise FfrInputError(src, f"rooms[{idx}].door", [list(rm.door[0]), list(rm.door[1])],
+                                "doorway not wider than its line")
+        mx, my = (ax + bx) / 2.0, (ay + by) / 2.0
+        if any(point_in_convex(mx, my, p) for p in _shrunk(arena.wall_polys)):
+            raise FfrInputError(src, f"rooms[{idx}].door", [list(rm.door[0]), list(rm.door[1])],
+                                "doorway blocked by a wall")
+        gap = _room_gap(arena, rm, reach)
+        if gap is not None:
+            raise FfrInputError(src, f"rooms[{idx}].polygon", [round(gap[0], 4), round(gap[1], 4)],
+                                f"room {rm.id} is not closed: no wall and no doorway there")
+    hx, hy = arena.home_center
+    if not arena.in_hallway(hx, hy) or arena.wall_distance(hx, hy) <= 0.0:
+        raise FfrInputError(src, "home.center", [hx, hy], "the home circle's centre must lie in a hallway")
+    for k, rm in enumerate(arena.rooms):
+        idx = room_index[k] if room_index else k
+        arena.check_candle(*rm.default_candle, source=f"{src}: rooms[{idx}].default_candle")
+
+
+def _shrunk(polys: np.ndarray, by: float = 1e-6) -> list[np.ndarray]:
+    """Wall polygons shrunk a hair towards their centres (a door edge touching a wall is not inside it)."""
+    out = []
+    for p in polys:
+        c = p.mean(axis=0)
+        d = p - c
+        n = np.linalg.norm(d, axis=1, keepdims=True)
+        out.append(c + d * np.maximum(0.0, 1.0 - by / np.maximum(n, 1e-12)))
+    return out
+
+
+def _room_gap(arena: Arena, rm: Room, reach: float, step: float = 0.01,
+              off: float = 0.003) -> tuple[float, float] | None:
+    """A point just outside the room's polygon in no wall and off the doorway, or None (closed)."""
+    poly = rm.polygon
+    n = poly.shape[0]
+    (ax, ay), (bx, by) = rm.door
+    for i in range(n):
+        p, q = poly[i], poly[(i + 1) % n]
+        ex, ey = q[0] - p[0], q[1] - p[1]
+        length = math.hypot(ex, ey)
+        ox, oy = ey / length, -ex / length  # outward normal of a CCW polygon
+        m = max(2, int(length / step))
+        for j in range(1, m):
+            f = j / m
+            x, y = p[0] + ex * f + ox * off, p[1] + ey * f + oy * off
+            if any(point_in_convex(x, y, wp) for wp in arena.wall_polys):
+                continue
+            if point_segment_distance(x, y, ax, ay, bx, by) <= reach:
+                continue
+            return x, y
+    return None
+
+
+def describe(arena: Arena) -> str:
+    """The arena's measures in cm, as docs/arena.md quotes them (``python -m sim_plant.arena [FILE]``)."""
+    from sim_plant.errors import CandlePlacementError
+
+    lines = [f"{arena.name} ({arena.source})",
+             f"outer square {arena.size[0] * 100:.1f} x {arena.size[1] * 100:.1f} cm, "
+             f"walls {min(w.t for w in arena.walls) * 100:.2f}-{max(w.t for w in arena.walls) * 100:.2f} cm thick, "
+             f"placement rule {arena.placement!r}",
+             f"home circle at ({arena.home_center[0] * 100:.1f}, {arena.home_center[1] * 100:.1f}) cm, "
+             f"radius {arena.home_radius * 100:.1f} cm, start heading {math.degrees(arena.home_heading):.0f} deg",
+             "hallway widths (cm): " + ", ".join(
+                 f"{h.name} {min(np.ptp(h.polygon[:, 0]), np.ptp(h.polygon[:, 1])) * 100:.1f}"
+                 for h in arena.hallways)]
+    from sim_plant.arena_jitter import MAX_JITTER, MERGE_GAP, _axis_knots
+
+    for axis in (0, 1):
+        knots = _axis_knots(arena, axis)
+        lines.append(f"jitter: {'xy'[axis]} lines at " + ", ".join(
+            (f"{c * 100:.1f}" if h <= 0.0105 else f"{(c - h) * 100:.1f}-{(c + h) * 100:.1f}")
+            + (" fixed" if fixed else "")
+            for c, h, fixed in knots) + " cm")
+    lines.append(f"jitter: lines closer than {MERGE_GAP * 100:.0f} cm move as one; at most {MAX_JITTER * 100:.0f} cm")
+    saved = arena.placement
+    try:
+        for r in arena.rooms:
+            verdict = []
+            for rule in PLACEMENT_RULES:
+                arena.placement = rule
+                try:
+                    arena.check_candle(*r.default_candle)
+                    verdict.append(f"{rule}: legal")
+                except CandlePlacementError as exc:
+                    verdict.append(f"{rule}: refused ({exc.rule})")
+            lines.append(f"room {r.id} {r.name}: door {math.dist(*r.door) * 100:.1f} cm, default candle "
+                         f"({r.default_candle[0] * 100:.1f}, {r.default_candle[1] * 100:.1f}) cm, "
+                         + "; ".join(verdict))
+    finally:
+        arena.placement = saved
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":
+    import sys
+
+    try:
+        print(describe(load_arena(sys.argv[1] if len(sys.argv) > 1 else None)))
+    except FfrInputError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        sys.exit(2)

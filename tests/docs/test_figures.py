@@ -61,3 +61,31 @@ def test_boards_doc_sizes_are_what_the_build_prints(board: str) -> None:
     line = next(ln for ln in _make("-B", f"build/arm/{board}-board.elf").splitlines()
                 if ln.startswith(f"{board} board: flash"))
     assert f"`{line}`" in doc, f"docs/boards.md: quote `{line}`"
+
+
+def test_arena_doc_measures_are_what_the_arena_command_prints() -> None:
+    """docs/arena.md quotes `python -m sim_plant.arena [FILE]`: its measures of both shipped arenas."""
+    doc = (REPO / "docs" / "arena.md").read_text(encoding="utf-8")
+
+    def describe(*argv: str) -> str:
+        res = subprocess.run([sys.executable, "-m", "sim_plant.arena", *argv], cwd=REPO, capture_output=True,
+                             text=True, timeout=120)
+        assert res.returncode == 0, res.stderr
+        return res.stdout
+
+    text_2004, text_2001 = describe(), describe("sim_plant/data/arena_2001.toml")
+    for text, size, home, heading in ((text_2004, "244.0", "(211.0, 117.0)", "90"),
+                                      (text_2001, "248.9", "(228.1, 116.8)", "180")):
+        assert f"outer square {size} x {size} cm" in text and f"| {size} cm |" in doc
+        assert f"home circle at {home} cm" in text and f"start heading {heading} deg" in text
+        assert f"{home} cm, start facing {heading}°" in doc
+    hall_line = text_2001.split("hallway widths (cm): ")[1].split("\n")[0]
+    halls = [float(v) for v in re.findall(r"[a-z]+ (\d+\.\d)", hall_line)]
+    doors = [float(v) for v in re.findall(r"door (\d+\.\d) cm", text_2001)]
+    assert f"hallways are {min(halls):.1f} to {max(halls):.1f} cm" in doc.replace("\n", " ")
+    assert f"doors {min(doors):.1f} to {max(doors):.1f} cm" in doc.replace("\n", " ")
+    assert "lines closer than 12 cm move as one; at most 5 cm" in text_2004
+    assert "Lines closer than 12 cm move as one" in doc and "the largest tolerance, 5 cm" in doc.replace("\n", " ")
+    for rid in (1, 2):
+        line = next(ln for ln in text_2001.splitlines() if ln.startswith(f"room {rid} "))
+        assert "entry-depth: refused (entry-depth); door-line: legal" in line
