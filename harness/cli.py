@@ -13,14 +13,23 @@ that cannot be used; the message is one line naming file, field and value.
 from __future__ import annotations
 
 import argparse
-import json
-import math
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, NoReturn
+from typing import Any
 
 from harness.atomic import check_outputs, write_json
+from harness.cli_args import (
+    EXIT_INPUT,
+    EXIT_MISSION,
+    EXIT_OK,
+    UsageError,
+    _candle,
+    _Parser,
+    _seed,
+    _setting,
+    add_arena_options,
+)
 from sim_plant.errors import FfrInputError
 
 # The paper's Table 1 (its robot, its parameters).
@@ -30,94 +39,6 @@ PAPER_TABLE1 = {
     3: (120.6, 161.1),
     4: (156.8, 196.3),
 }
-
-EXIT_OK, EXIT_MISSION, EXIT_INPUT = 0, 1, 2
-
-
-class UsageError(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> NoReturn:  # one line, not usage + error
-        raise UsageError(message)
-
-
-def _candle(text: str) -> tuple[float, float]:
-    parts = text.split(",")
-    try:
-        if len(parts) != 2:
-            raise ValueError
-        x, y = float(parts[0]), float(parts[1])
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--candle = {text!r}: expected X,Y in metres") from None
-    if not (math.isfinite(x) and math.isfinite(y)):
-        raise argparse.ArgumentTypeError(f"--candle = {text!r}: expected finite numbers")
-    return x, y
-
-
-def _start(text: str) -> tuple[float, float, float] | str:
-    """``X,Y,DEG`` (metres, degrees counter-clockwise from +x) or ``random``; returns radians."""
-    if text == "random":
-        return text
-    parts = text.split(",")
-    try:
-        if len(parts) != 3:
-            raise ValueError
-        x, y, deg = (float(v) for v in parts)
-        if not all(math.isfinite(v) for v in (x, y, deg)):
-            raise ValueError
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"--start = {text!r}: expected X,Y,DEG (metres, degrees) or random") from None
-    return x, y, math.radians(deg)
-
-
-def _jitter(text: str) -> float:
-    from sim_plant.arena_jitter import MAX_JITTER
-    try:
-        v = float(text)
-        if not (math.isfinite(v) and 0.0 <= v <= MAX_JITTER):
-            raise ValueError
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"--arena-jitter = {text!r}: expected metres in 0 .. {MAX_JITTER}") from None
-    return v
-
-
-def add_arena_options(sp: argparse.ArgumentParser) -> None:
-    """``--start`` and ``--arena-jitter``: on every command that runs missions."""
-    sp.add_argument("--start", type=_start, default=None, metavar="X,Y,DEG|random",
-                    help="start pose in the home circle (m, m, degrees from +x), or random: uniform in the "
-                         "home circle, any heading, drawn from the seed (default: its centre, facing +y)")
-    sp.add_argument("--arena-jitter", type=_jitter, default=None, metavar="METRES",
-                    help="move every wall line and door edge by up to this much, drawn from the seed "
-                         "(e.g. 0.025; default 0 or the scenario's)")
-
-
-def _seed(text: str) -> int:
-    try:
-        v = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"--seed = {text!r}: expected a non-negative integer") from None
-    if v < 0:
-        raise argparse.ArgumentTypeError(f"--seed = {text!r}: expected a non-negative integer")
-    return v
-
-
-def _setting(text: str) -> tuple[str, str, Any]:
-    key, sep, raw = text.partition("=")
-    group, dot, name = key.partition(".")
-    if not sep or not dot or group not in ("firmware", "robot") or not name:
-        raise argparse.ArgumentTypeError(
-            f"--set = {text!r}: expected firmware.NAME=VALUE or robot.PATH=VALUE")
-    value: Any
-    try:
-        value = json.loads(raw)
-    except json.JSONDecodeError:
-        value = raw
-    return group, name, value
-
 
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="ffr", description="Firmware-in-the-loop missions for a fire-fighting robot.")

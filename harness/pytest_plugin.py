@@ -89,18 +89,12 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
 
 
 def _settings(config: pytest.Config) -> list[tuple[str, str, Any]]:
-    out = []
-    for text in config.getoption("--ffr-set"):
-        key, sep, raw = text.partition("=")
-        group, dot, name = key.partition(".")
-        if not sep or not dot or group not in ("firmware", "robot") or not name:
-            raise pytest.UsageError(f"--ffr-set = {text!r}: expected firmware.NAME=VALUE or robot.PATH=VALUE")
-        try:
-            value = json.loads(raw)
-        except json.JSONDecodeError:
-            value = raw
-        out.append((group, name, value))
-    return out
+    from harness.cli_args import parse_setting  # the same parser as ffr's --set
+
+    try:
+        return [parse_setting(text, "--ffr-set") for text in config.getoption("--ffr-set")]
+    except ValueError as exc:
+        raise pytest.UsageError(str(exc)) from None
 
 
 def pytest_report_header(config: pytest.Config) -> str | None:

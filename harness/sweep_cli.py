@@ -10,6 +10,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from harness.cli_args import _setting, add_arena_options
 from sim_plant.errors import FfrInputError
 
 
@@ -37,7 +38,6 @@ def _param(text: str) -> Any:
 
 
 def add_sweep_parser(sub: Any) -> None:
-    from harness.cli import _setting
     sp = sub.add_parser("sweep", help="many missions: candle positions x seeds x parameters, on all cores or a "
                                       "Dask cluster")
     sp.add_argument("--rooms", type=lambda t: _int_list(t, "--rooms"), default=(1, 2, 3, 4),
@@ -76,14 +76,13 @@ def add_sweep_parser(sub: Any) -> None:
     sp.add_argument("--min-success", type=float, default=None, metavar="PCT",
                     help="exit 1 when fewer than PCT %% of the missions succeed")
     sp.add_argument("--no-progress", action="store_true", help="no progress bar")
-    from harness.cli import add_arena_options
     add_arena_options(sp)
 
 
 def _check(args: argparse.Namespace) -> None:
     """Every setting and parameter value checked before any mission starts."""
     from ffr_link.ctypes_link import default_config
-    from harness.cli import UsageError
+    from harness.cli_args import UsageError
     from harness.firmware_config import apply_overrides
     from sim_plant.arena import load_arena
     from sim_plant.robot import load_robot, override
@@ -175,7 +174,7 @@ def run_sweep(args: argparse.Namespace) -> int:
     from harness import sweep as sw
     from harness import sweep_store as store
     from harness.atomic import write_json
-    from harness.cli import UsageError
+    from harness.cli_args import UsageError
 
     _check(args)
     if args.resume is not None:

@@ -64,11 +64,11 @@ def test_boards_doc_sizes_are_what_the_build_prints(board: str) -> None:
 
 
 def test_arena_doc_measures_are_what_the_arena_command_prints() -> None:
-    """docs/arena.md quotes `python -m sim_plant.arena [FILE]`: its measures of both shipped arenas."""
+    """docs/arena.md quotes `python -m sim_plant.arena_report [FILE]`: its measures of both shipped arenas."""
     doc = (REPO / "docs" / "arena.md").read_text(encoding="utf-8")
 
     def describe(*argv: str) -> str:
-        res = subprocess.run([sys.executable, "-m", "sim_plant.arena", *argv], cwd=REPO, capture_output=True,
+        res = subprocess.run([sys.executable, "-m", "sim_plant.arena_report", *argv], cwd=REPO, capture_output=True,
                              text=True, timeout=120)
         assert res.returncode == 0, res.stderr
         return res.stdout
