@@ -191,6 +191,11 @@ def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec
         raise FfrInputError(src, "noise", noise, "must be a profile name or file, or a table")
     elif noise.endswith(".toml") or "#" in noise:
         noise = str(base / noise)
+    else:
+        try:
+            noise = load_noise_profile(noise)
+        except FfrInputError as exc:  # a name the profiles file lacks: this file's field is wrong
+            raise FfrInputError(src, "noise", noise, exc.why) from None
     candle_tab = r.sub("candle") if "candle" in data else _Reader(src, {}, "candle.")
     _known_only(candle_tab, "candle", {"room", "position"})
     room = candle_tab.get("room", None)
@@ -202,8 +207,9 @@ def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec
     candle = candle_tab.point("position") if pos is not None else None
     if candle is not None:
         arena.check_candle(*candle, source=src)
-    elif room is not None:
-        arena.room(room)  # raises with the known ids
+    elif room is not None and room not in [rm.id for rm in arena.rooms]:
+        raise FfrInputError(src, "candle.room", room, f"no such room in {arena.source} "
+                                                      f"(rooms: {[rm.id for rm in arena.rooms]})")
     file_start: StartSpec = None
     if "start" in data:
         s = r.sub("start")

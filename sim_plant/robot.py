@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import difflib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -141,8 +142,17 @@ def _section(root: _Reader, name: str, cls: type) -> Any:
     return cls(**kwargs)
 
 
+ROBOT_SECTIONS = ("body", "track", "motor", "encoder", "ir", "line_sensor", "flame", "fans")
+
+
 def robot_from_dict(data: dict[str, Any], source: str) -> RobotParams:
     root = _Reader(source, data)
+    unknown = sorted(set(data) - set(ROBOT_SECTIONS))
+    if unknown:
+        near = difflib.get_close_matches(unknown[0], ROBOT_SECTIONS, n=1)
+        hint = f"did you mean {near[0]!r}? " if near else ""
+        raise FfrInputError(source, unknown[0], data[unknown[0]],
+                            f"unknown section ({hint}known: {', '.join(ROBOT_SECTIONS)})")
     ir_tab = root.sub("ir")
     ir = {}
     for n in IR_NAMES:
