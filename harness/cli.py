@@ -88,7 +88,8 @@ def _scenarios(args: argparse.Namespace, rooms: Sequence[int | None]) -> list[An
     ro = {k: v for g, k, v in args.settings if g == "robot"}
     out = []
     if getattr(args, "scenario", None):
-        scn = load_scenario(args.scenario, seed=args.seed, start=args.start, arena_jitter=args.arena_jitter)
+        scn = load_scenario(args.scenario, seed=args.seed, start=args.start, arena_jitter=args.arena_jitter,
+                            furniture=args.furniture)
         if args.noise:
             from sim_plant.sensors import load_noise_profile
             scn.noise = load_noise_profile(args.noise)
@@ -109,7 +110,8 @@ def _scenarios(args: argparse.Namespace, rooms: Sequence[int | None]) -> list[An
                                  candle=getattr(args, "candle", None), seed=args.seed or 0,
                                  noise=args.noise or "none", firmware=fw, robot_overrides=ro,
                                  source="--set" if args.settings else "command line",
-                                 start=args.start, arena_jitter=args.arena_jitter or 0.0))
+                                 start=args.start, arena_jitter=args.arena_jitter or 0.0,
+                                 furniture=args.furniture))
     return out
 
 

@@ -36,8 +36,9 @@ def _candle(text: str) -> tuple[float, float]:
 
 
 def _start(text: str) -> tuple[float, float, float] | str:
-    """``X,Y,DEG`` (metres, degrees counter-clockwise from +x) or ``random``; returns radians."""
-    if text == "random":
+    """``X,Y,DEG`` (metres, degrees counter-clockwise from +x), ``random`` (in the home circle) or
+    ``hallway`` (random in a hallway: the arbitrary start mode); returns radians."""
+    if text in ("random", "hallway"):
         return text
     parts = text.split(",")
     try:
@@ -48,7 +49,7 @@ def _start(text: str) -> tuple[float, float, float] | str:
             raise ValueError
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"--start = {text!r}: expected X,Y,DEG (metres, degrees) or random") from None
+            f"--start = {text!r}: expected X,Y,DEG (metres, degrees), random or hallway") from None
     return x, y, math.radians(deg)
 
 
@@ -66,12 +67,16 @@ def _jitter(text: str) -> float:
 
 def add_arena_options(sp: argparse.ArgumentParser) -> None:
     """``--start`` and ``--arena-jitter``: on every command that runs missions."""
-    sp.add_argument("--start", type=_start, default=None, metavar="X,Y,DEG|random",
+    sp.add_argument("--start", type=_start, default=None, metavar="X,Y,DEG|random|hallway",
                     help="start pose in the home circle (m, m, degrees from +x), or random: uniform in the "
-                         "home circle, any heading, drawn from the seed (default: its centre, facing +y)")
+                         "home circle, any heading, drawn from the seed (default: its centre, facing +y); hallway: the "
+                         "arbitrary start mode, anywhere in a hallway, any heading")
     sp.add_argument("--arena-jitter", type=_jitter, default=None, metavar="METRES",
                     help="move every wall line and door edge by up to this much, drawn from the seed "
                          "(e.g. 0.025; default 0 or the scenario's)")
+    sp.add_argument("--furniture", type=_furniture, default=None, metavar="N",
+                    help="the furniture mode: N pieces standing in the rooms, drawn from the seed "
+                         "(docs/arena.md, Furniture)")
 
 
 def _seed(text: str) -> int:
@@ -104,3 +109,14 @@ def _setting(text: str) -> tuple[str, str, Any]:
         return parse_setting(text)
     except ValueError as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def _furniture(text: str) -> int:
+    from sim_plant.furniture import MAX_PIECES
+    try:
+        v = int(text)
+        if not 0 <= v <= MAX_PIECES:
+            raise ValueError
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--furniture = {text!r}: expected a count 0 .. {MAX_PIECES}") from None
+    return v

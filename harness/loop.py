@@ -208,9 +208,10 @@ class Mission:
             detail=detail, scenario=scn.name, link=link.url, sim_time_s=t,
             final_pose=(plant.x, plant.y, plant.theta),
             link_counters=(link.link_counters() - counters0).as_dict(),
-            start_pose=scn.start, arena_jitter=scn.arena_jitter,
+            start_pose=scn.start, arena_jitter=scn.arena_jitter, modes=scn.modes,
+            furniture=[p.as_list() for p in scn.furniture],
         )
-        result.score = contest_score(self.rules, outcome, ext, rooms_searched, plant.contacts)
+        result.score = contest_score(self.rules, outcome, ext, rooms_searched, plant.contacts, scn.modes)
         n = k if record else 0
         return result, Trace(tf[:n].copy(), ti[:n].copy())
 

@@ -16,18 +16,31 @@ from pathlib import Path
 from typing import Any
 
 from harness.events import Event, parse_events
-from harness.start_pose import JITTER_STREAM, START_STREAM, check_start, draw_start, stream
+from harness.start_pose import (
+    FURNITURE_STREAM,
+    JITTER_STREAM,
+    START_AREAS,
+    START_STREAM,
+    check_start,
+    draw_hallway_start,
+    draw_start,
+    stream,
+)
 from sim_plant.arena import DEFAULT_ARENA, Arena, _Reader, load_arena, read_toml
 from sim_plant.arena_jitter import check_jitter, jitter_arena
 from sim_plant.errors import FfrInputError
+from sim_plant.furniture import Piece, check_furniture, draw_furniture, furnish
 from sim_plant.robot import DEFAULT_ROBOT, RobotParams, load_robot, override
 from sim_plant.sensors import NoiseProfile, load_noise_profile
 from sim_plant.sensors.noise import profile_from_table, profile_to_table
 
 _TOP_KEYS = {"name", "seed", "noise", "arena", "arena_jitter", "robot", "candle", "start", "timing", "firmware",
-             "robot_overrides", "events", "stop_on_contact"}
+             "robot_overrides", "events", "stop_on_contact", "furniture"}
 
-StartSpec = tuple[float, float, float] | str | None  # a pose (x, y m, heading rad), "random", or None (default)
+# a pose (x, y m, heading rad), "random" (in the home circle), "hallway" (random in a hallway: the
+# arbitrary start mode), or None (the default)
+StartSpec = tuple[float, float, float] | str | None
+FurnitureSpec = int | list[Piece] | None  # N random pieces, the pieces, or none
 
 
 @dataclass
@@ -59,6 +72,15 @@ class Scenario:
     arena_jitter: float = 0.0  # m: ``arena`` is the file's arena jittered by this much (from the seed)
     candle_nominal: tuple[float, float] | None = None  # the candle asked for, before the jitter carried it
     start_random: bool = False  # ``start`` was drawn from the seed (docs/scenarios.md)
+    start_area: str = "home"  # "hallway": the contest's arbitrary start mode
+    furniture: list[Piece] = field(default_factory=list)  # standing in the rooms (walls of ``arena``)
+    furniture_random: int = 0  # the pieces were drawn from the seed (this many)
+
+    @property
+    def modes(self) -> list[str]:
+        """The contest's optional modes this mission runs in (their score factors: scoring.toml)."""
+        return (["arbitrary_start"] if self.start_area == "hallway" else []) + (
+            ["furniture"] if self.furniture else [])
 
     def requested_candle(self) -> tuple[float, float]:
         """The candle position as asked for (in the unjittered arena): what a saved scenario records."""
@@ -78,12 +100,16 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
                   start: StartSpec = None, timing: Timing | None = None,
                   name: str | None = None, source: str = "command line",
                   stop_on_contact: bool = False, events: list[Event] | None = None,
-                  arena_jitter: float = 0.0) -> Scenario:
+                  arena_jitter: float = 0.0, furniture: FurnitureSpec = None,
+                  start_area: str = "home") -> Scenario:
     """A mission. ``start``: a pose (checked: centre in the home circle, footprint clear of the walls),
     ``"random"`` (drawn from the seed's start stream) or None (the home circle's centre, facing the
     arena file's start heading).
     ``arena_jitter`` > 0: the arena's walls and doors moved within that many metres, drawn from the
-    seed's jitter stream; the candle is carried with them (sim_plant/arena_jitter.py)."""
+    seed's jitter stream; the candle is carried with them (sim_plant/arena_jitter.py).
+    ``furniture``: that many pieces drawn from the seed's furniture stream, or the pieces; they
+    stand in the rooms as more walls (sim_plant/furniture.py). ``start_area`` "hallway": a pose
+    given is checked against the hallways instead of the home circle (the arbitrary start mode)."""
     arena = arena or load_arena()
     robot = robot or load_robot()
     robot_file = None if robot.source == str(DEFAULT_ROBOT) else robot.source
@@ -102,15 +128,31 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
     if arena_jitter > 0.0:
         arena, warp = jitter_arena(arena, float(arena_jitter), stream(seed, JITTER_STREAM), candle=nominal)
         candle = warp.point(nominal)
+    if isinstance(furniture, int):
+        pieces = draw_furniture(arena, furniture, candle, stream(seed, FURNITURE_STREAM), source)
+    else:
+        pieces = list(furniture or [])
+        check_furniture(arena, pieces, candle, source)
+    arena = furnish(arena, pieces)
+    if start_area not in START_AREAS:
+        raise FfrInputError(source, "start.area", start_area, f"expected one of {', '.join(START_AREAS)}")
     if isinstance(start, str):
-        if start != "random":
-            raise FfrInputError(source, "start", start, "expected X,Y,DEG or random")
-        pose = draw_start(arena, robot, stream(seed, START_STREAM))
+        if start not in ("random", "hallway"):
+            raise FfrInputError(source, "start", start, "expected X,Y,DEG, random or hallway")
+        if start == "hallway":
+            start_area = "hallway"
+            pose = draw_hallway_start(arena, robot, stream(seed, START_STREAM))
+        elif start_area == "hallway":
+            pose = draw_hallway_start(arena, robot, stream(seed, START_STREAM))
+        else:
+            pose = draw_start(arena, robot, stream(seed, START_STREAM))
     elif start is None:
+        if start_area == "hallway":
+            raise FfrInputError(source, "start.area", start_area, "needs a pose or random = true")
         pose = default_start(arena)
     else:
         pose = (float(start[0]), float(start[1]), float(start[2]))
-        check_start(arena, robot, pose, source)
+        check_start(arena, robot, pose, source, area=start_area)
     prof = noise if isinstance(noise, NoiseProfile) else load_noise_profile(noise)
     return Scenario(
         name=name or (f"room{room_id}" if named else "candle"),
@@ -119,7 +161,9 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
         firmware=dict(firmware or {}), robot_overrides=dict(robot_overrides or {}),
         timing=timing or Timing(), stop_on_contact=stop_on_contact, events=list(events or []),
         robot_file=robot_file, arena_jitter=float(arena_jitter),
-        candle_nominal=nominal if arena_jitter > 0.0 else None, start_random=start == "random",
+        candle_nominal=nominal if arena_jitter > 0.0 else None, start_random=start in ("random", "hallway"),
+        start_area=start_area, furniture=pieces,
+        furniture_random=furniture if isinstance(furniture, int) else 0,
     )
 
 
@@ -156,8 +200,9 @@ def _known_only(tab: _Reader, name: str, known: set[str]) -> None:
 
 
 def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec = None,
-                  arena_jitter: float | None = None) -> Scenario:
-    """Load a scenario file; ``seed``, ``start`` and ``arena_jitter`` (from the CLI) override the file's."""
+                  arena_jitter: float | None = None, furniture: int | None = None) -> Scenario:
+    """Load a scenario file; ``seed``, ``start``, ``arena_jitter`` and ``furniture`` (from the CLI)
+    override the file's."""
     p = Path(path)
     src = str(p)
     data = read_toml(p)
@@ -211,14 +256,19 @@ def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec
         raise FfrInputError(src, "candle.room", room, f"no such room in {arena.source} "
                                                       f"(rooms: {[rm.id for rm in arena.rooms]})")
     file_start: StartSpec = None
+    start_area = "home"
     if "start" in data:
         s = r.sub("start")
-        _known_only(s, "start", {"x", "y", "heading_deg", "random"})
+        _known_only(s, "start", {"x", "y", "heading_deg", "random", "area"})
+        area = s.get("area", "home")
+        if area not in START_AREAS:
+            raise FfrInputError(src, "start.area", area, f"expected one of {', '.join(START_AREAS)}")
+        start_area = area
         rnd = s.get("random", False)
         if not isinstance(rnd, bool):
             raise FfrInputError(src, "start.random", rnd, "must be true or false")
         if rnd:
-            extra = sorted(set(s.table) - {"random"})
+            extra = sorted(set(s.table) - {"random", "area"})
             if extra:
                 raise FfrInputError(src, f"start.{extra[0]}", s.table[extra[0]],
                                     "give either start.random = true or a pose (x, y, heading_deg)")
@@ -236,11 +286,30 @@ def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec
     if not isinstance(stop, bool):
         raise FfrInputError(src, "stop_on_contact", stop, "must be true or false")
     events = parse_events(data.get("events", []), src)
+    file_furniture = _furniture(data.get("furniture"), src)
     name = r.string("name", p.stem)
     return make_scenario(arena=arena, robot=robot, room=room, candle=candle,
                          seed=file_seed if seed is None else seed, noise=noise, firmware=fw,
                          robot_overrides=ro, start=file_start if start is None else start, timing=timing,
-                         name=name, source=src, stop_on_contact=stop, events=events, arena_jitter=jitter)
+                         name=name, source=src, stop_on_contact=stop, events=events, arena_jitter=jitter,
+                         furniture=file_furniture if furniture is None else furniture, start_area=start_area)
+
+
+def _furniture(value: Any, src: str) -> FurnitureSpec:
+    """``furniture = N`` (random pieces) or ``[[furniture]]`` tables (x, y, width, depth, heading_deg)."""
+    if value is None:
+        return None
+    if isinstance(value, int) and not isinstance(value, bool):
+        return value  # the count is checked where the pieces are drawn
+    if not isinstance(value, list) or not all(isinstance(t, dict) for t in value):
+        raise FfrInputError(src, "furniture", value, "expected a count or [[furniture]] tables")
+    pieces = []
+    for k, t in enumerate(value):
+        tab = _Reader(src, t, f"furniture[{k}].")
+        _known_only(tab, f"furniture[{k}]", {"x", "y", "width", "depth", "heading_deg"})
+        pieces.append(Piece(tab.number("x"), tab.number("y"), tab.number("width", positive=True),
+                            tab.number("depth", positive=True), math.radians(tab.number("heading_deg", 0.0))))
+    return pieces
 
 
 # -- writing -------------------------------------------------------------------
@@ -253,7 +322,7 @@ def _toml_value(v: Any) -> str:
     if isinstance(v, float):
         if not math.isfinite(v):
             raise ValueError(f"cannot write {v!r} to TOML")
-        return repr(v)  # shortest text that reads back to the same double
+        return repr(float(v))  # shortest text that reads back to the same double (numpy's too)
     if isinstance(v, str):
         return json.dumps(v)
     if isinstance(v, list | tuple):
@@ -307,6 +376,8 @@ def scenario_to_toml(scn: Scenario, comment: str = "") -> str:
         lines += ["", "# drawn by start.random = true from the seed: the pose it drew"]
     lines += ["", "[start]", f"x = {_toml_value(float(scn.start[0]))}", f"y = {_toml_value(float(scn.start[1]))}",
               f"heading_deg = {_toml_value(_degrees_exact(float(scn.start[2])))}"]
+    if scn.start_area != "home":
+        lines.append(f"area = {_toml_value(scn.start_area)}")
     tm = scn.timing
     lines += ["", "[timing]", f"firmware_period_ms = {tm.firmware_period_ms}",
               f"plant_dt_ms = {_toml_value(float(tm.plant_dt_ms))}",
@@ -321,4 +392,10 @@ def scenario_to_toml(scn: Scenario, comment: str = "") -> str:
         _toml_table(lines, "robot_overrides", dict(scn.robot_overrides))
     for ev in scn.events:
         lines += ["", "[[events]]"] + [f"{k} = {_toml_value(v)}" for k, v in ev.to_table().items()]
+    if scn.furniture_random:
+        lines += ["", f"# drawn by furniture = {scn.furniture_random} from the seed: the pieces it drew"]
+    for pc in scn.furniture:
+        lines += ["", "[[furniture]]", f"x = {_toml_value(pc.x)}", f"y = {_toml_value(pc.y)}",
+                  f"width = {_toml_value(pc.width)}", f"depth = {_toml_value(pc.depth)}",
+                  f"heading_deg = {_toml_value(_degrees_exact(pc.heading))}"]
     return "\n".join(lines) + "\n"

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -24,6 +25,8 @@ class ScoringRules:
     room_factor: dict[int, float]
     return_trip_factor: float
     wall_contact_penalty: float
+    # the optional modes' factors besides the return trip (arbitrary_start, furniture)
+    mode_factors: dict[str, float] = field(default_factory=dict)
 
     @classmethod
     def load(cls, path: Path = SCORING_FILE) -> ScoringRules:
@@ -33,6 +36,7 @@ class ScoringRules:
             room_factor={int(k): float(v) for k, v in data["room_factor"].items()},
             return_trip_factor=float(data["mode_factor"]["return_trip"]),
             wall_contact_penalty=float(data["penalty"]["wall_contact"]),
+            mode_factors={k: float(v) for k, v in data["mode_factor"].items() if k != "return_trip"},
         )
 
 
@@ -58,6 +62,8 @@ class MissionResult:
     link_counters: dict[str, int] = field(default_factory=dict)
     start_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)  # x, y (m), heading (rad) the mission started at
     arena_jitter: float = 0.0  # m, the arena's walls moved by up to this (drawn from the seed)
+    modes: list[str] = field(default_factory=list)  # optional modes run in (arbitrary_start, furniture)
+    furniture: list[list[float]] = field(default_factory=list)  # each piece: x, y, width, depth (m), heading (deg)
     extra: dict[str, Any] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
@@ -86,15 +92,19 @@ class MissionResult:
             "start_pose": [round(self.start_pose[0], 4), round(self.start_pose[1], 4),
                            round(math.degrees(self.start_pose[2]), 2)],
             "arena_jitter": self.arena_jitter,
+            "modes": list(self.modes),
+            "furniture": [list(p) for p in self.furniture],
         }
         out.update(self.extra)
         return out
 
 
 def contest_score(rules: ScoringRules, outcome: str, time_to_extinguish_s: float | None,
-                  rooms_searched: int, wall_contacts: int) -> float:
+                  rooms_searched: int, wall_contacts: int, modes: Sequence[str] = ()) -> float:
     if outcome not in ("home", "extinguished") or time_to_extinguish_s is None:
         return rules.incomplete_score
     rf = rules.room_factor.get(max(1, rooms_searched), min(rules.room_factor.values()))
     mode = rules.return_trip_factor if outcome == "home" else 1.0
+    for m in modes:
+        mode *= rules.mode_factors[m]
     return time_to_extinguish_s * rf * mode + rules.wall_contact_penalty * wall_contacts

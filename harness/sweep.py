@@ -50,7 +50,7 @@ from harness.atomic import write_bytes_atomic
 from sim_plant.errors import FfrInputError
 
 ROW_FIELDS = ["id", "room", "candle_x", "candle_y", "seed", "noise", "start_x", "start_y", "start_heading_deg",
-              "arena_jitter", "jitter_seed", "outcome", "success", "detail",
+              "arena_jitter", "jitter_seed", "furniture", "outcome", "success", "detail",
               "time_to_extinguish_s", "total_time_s", "wall_contacts", "min_wall_clearance_m",
               "path_length_m", "sim_time_s", "replay"]
 
@@ -123,6 +123,7 @@ class SweepSpec:
     robot_file: str | None = None
     start: tuple[float, float, float] | str | None = None  # a pose, "random" (from each mission's seed), None
     arena_jitter: float = 0.0  # m: each mission's arena jittered, drawn from its seed
+    furniture: int = 0  # pieces standing in the rooms, drawn from each mission's seed
 
 
 def candle_positions(spec: SweepSpec) -> list[tuple[int, float, float]]:
@@ -171,7 +172,7 @@ def build_jobs(spec: SweepSpec) -> list[dict[str, Any]]:
                      "firmware": fw, "robot": ro, "params": params, "link": spec.link,
                      "arena": spec.arena, "robot_file": spec.robot_file,
                      "start": list(spec.start) if isinstance(spec.start, tuple) else spec.start,
-                     "arena_jitter": spec.arena_jitter})
+                     "arena_jitter": spec.arena_jitter, "furniture": spec.furniture})
     return jobs
 
 
@@ -187,13 +188,15 @@ def replay_command(job: dict[str, Any]) -> str:
     if job.get("arena"):
         argv += ["--arena", job["arena"]]
     start = job.get("start")
-    if start == "random":
-        argv += ["--start", "random"]
+    if start in ("random", "hallway"):
+        argv += ["--start", start]
     elif start is not None:
         from harness.scenario import _degrees_exact
         argv += ["--start", f"{start[0]!r},{start[1]!r},{_degrees_exact(start[2])!r}"]
     if job.get("arena_jitter"):
         argv += ["--arena-jitter", repr(job["arena_jitter"])]
+    if job.get("furniture"):
+        argv += ["--furniture", str(job["furniture"])]
     if job.get("robot_file"):
         argv += ["--robot", job["robot_file"]]
     if job.get("link", "ctypes:") != "ctypes:":
@@ -229,6 +232,7 @@ def run_job(job: dict[str, Any]) -> dict[str, Any]:
     row: dict[str, Any] = {"id": job["id"], "room": job["room"], "candle_x": job["candle"][0],
                            "candle_y": job["candle"][1], "seed": job["seed"], "noise": job["noise"],
                            "arena_jitter": jitter, "jitter_seed": job["seed"] if jitter > 0.0 else None,
+                           "furniture": int(job.get("furniture") or 0),
                            "replay": replay_command(job)}
     row |= job["params"]
     start = job.get("start")
@@ -237,7 +241,7 @@ def run_job(job: dict[str, Any]) -> dict[str, Any]:
         scn = make_scenario(arena=arena, robot=robot, candle=tuple(job["candle"]), seed=job["seed"],
                             noise=job["noise"], firmware=job["firmware"], robot_overrides=job["robot"],
                             source="sweep", start=tuple(start) if isinstance(start, list) else start,
-                            arena_jitter=jitter)
+                            arena_jitter=jitter, furniture=int(job.get("furniture") or 0))
         row |= {"start_x": scn.start[0], "start_y": scn.start[1], "start_heading_deg": math.degrees(scn.start[2])}
         res, _ = run_mission(scn, _link(job["link"]), record=False)
     except FfrInputError as exc:

@@ -154,6 +154,7 @@ def sweep_identity(args: argparse.Namespace, jobs: list[dict[str, Any]]) -> dict
         "--arena": args.arena, "--robot": args.robot, "files": files,
         "--start": list(args.start) if isinstance(args.start, tuple) else args.start,
         "--arena-jitter": args.arena_jitter or 0.0,
+        "--furniture": args.furniture or 0,
         "missions": len(jobs), "jobs_sha256": store.jobs_digest(jobs),
     }
 
@@ -188,7 +189,8 @@ def run_sweep(args: argparse.Namespace) -> int:
         seeds=args.seeds, noise=args.noise, params=tuple(args.param), mode=args.mode, n_random=args.samples,
         sweep_seed=args.sweep_seed, firmware={k: v for g, k, v in args.settings if g == "firmware"},
         robot={k: v for g, k, v in args.settings if g == "robot"}, link=args.link, arena=args.arena,
-        robot_file=args.robot, start=args.start, arena_jitter=args.arena_jitter or 0.0)
+        robot_file=args.robot, start=args.start, arena_jitter=args.arena_jitter or 0.0,
+        furniture=args.furniture or 0)
     jobs = sw.build_jobs(spec)
     if not jobs:
         raise UsageError("the sweep has no missions (no legal candle position?)")
