@@ -19,14 +19,23 @@ from ffr_link.abi import (
 from ffr_link.base import FirmwareLink, LinkCounters, LinkError
 
 REPO = Path(__file__).resolve().parents[1]
-DEFAULT_LIB = REPO / "build" / "host" / "libffr.so"
+DEFAULT_LIB = REPO / "build" / "host" / "libffr.so"  # a checkout's (make firmware-host)
 
 
 def library_path(explicit: str | None = None) -> Path:
+    """``ctypes:PATH``, else ``$FFR_FIRMWARE_LIB``, else our firmware: a checkout's build, or, for an
+    installed ffr, the build in the user's cache (compiled from the shipped sources on first use)."""
     if explicit:
         return Path(explicit)
     env = os.environ.get("FFR_FIRMWARE_LIB")
-    return Path(env) if env else DEFAULT_LIB
+    if env:
+        return Path(env)
+    from ffr_firmware.build import BuildError, host_build
+
+    try:
+        return host_build("library")
+    except BuildError as exc:
+        raise LinkError(f"firmware library: {exc}") from None
 
 
 @lru_cache(maxsize=8)

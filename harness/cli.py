@@ -48,6 +48,8 @@ def build_parser() -> argparse.ArgumentParser:
                link_help: str = "firmware link URL (default ctypes:, in-process)") -> None:
         sp.add_argument("--seed", type=_seed, default=None, help="random seed (default 0 or the scenario's)")
         sp.add_argument("--link", default=link, help=link_help)
+        sp.add_argument("--firmware", metavar="LIB.so", default=None,
+                        help="a firmware library to run in-process (the same as --link ctypes:LIB.so)")
         sp.add_argument("--json", metavar="FILE|-", help="write the result(s) as JSON")
         sp.add_argument("--plot", metavar="FILE.png", help="draw the arena and the robot's path(s)")
         sp.add_argument("--noise", default=None, help="sensor noise profile (none, typical, harsh, FILE.toml)")
@@ -76,7 +78,30 @@ def build_parser() -> argparse.ArgumentParser:
     b2b.add_argument("--reference", default="ctypes:", help="the reference build (default ctypes:, the host library)")
     from harness.sweep_cli import add_sweep_parser
     add_sweep_parser(sub)
+    bd = sub.add_parser("build", help="compile a firmware for the host: its library (ctypes:) and host board program")
+    bd.add_argument("--src", default=None, metavar="DIR",
+                    help="a firmware tree: DIR/src/*.c and DIR/include/*.h (default: ffr's own firmware)")
+    bd.add_argument("--out", default="build/host", metavar="DIR", help="where to put them (default build/host)")
+    bd.add_argument("--no-board", action="store_true", help="only the library")
     return p
+
+
+def _execute_build(args: argparse.Namespace) -> int:
+    from ffr_firmware.build import HERE, BuildError, Tree, build
+
+    src = Path(args.src) if args.src else HERE
+    if not (src / "src").is_dir():
+        raise UsageError(f"--src = {args.src!r}: no src/ directory of C sources there")
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"--out = {args.out!r}: not a directory")
+    try:
+        built = build(Tree(src.resolve()), out, board=not args.no_board)
+    except BuildError as exc:
+        raise UsageError(str(exc)) from None
+    for kind, path in built.items():
+        print(f"{kind}: {path}")
+    return EXIT_OK
 
 
 def _scenarios(args: argparse.Namespace, rooms: Sequence[int | None]) -> list[Any]:
@@ -186,9 +211,18 @@ def _execute(args: argparse.Namespace) -> int:
     from ffr_link import LinkError, open_link
     from harness.loop import run_mission, warm_up
 
+    if args.command == "build":
+        return _execute_build(args)
     bad = check_outputs(args, "json", "plot", "out")
     if bad:
         raise UsageError(bad)
+    if getattr(args, "firmware", None):
+        if args.command == "b2b":
+            args.reference = f"ctypes:{args.firmware}"  # the library under test is the reference side
+        elif args.link != "ctypes:":
+            raise UsageError(f"--firmware = {args.firmware!r}: runs in-process; leave --link {args.link} out")
+        else:
+            args.link = f"ctypes:{args.firmware}"
     if args.command == "b2b":
         return _execute_b2b(args)
     if args.command == "sweep":

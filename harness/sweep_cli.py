@@ -58,6 +58,8 @@ def add_sweep_parser(sub: Any) -> None:
     sp.add_argument("--set", dest="settings", type=_setting, action="append", default=[], metavar="KEY=VALUE",
                     help="fixed setting for every mission (repeatable)")
     sp.add_argument("--link", default="ctypes:", help="firmware link URL (default ctypes:)")
+    sp.add_argument("--firmware", metavar="LIB.so", default=None,
+                    help="a firmware library to run in-process (the same as --link ctypes:LIB.so)")
     sp.add_argument("--arena", default=None, help="arena TOML file")
     sp.add_argument("--robot", default=None, help="robot TOML file")
     sp.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
@@ -86,6 +88,11 @@ def _check(args: argparse.Namespace) -> None:
     from harness.firmware_config import apply_overrides
     from sim_plant.arena import load_arena
     from sim_plant.robot import load_robot, override
+
+    if args.firmware:
+        if args.link != "ctypes:":
+            raise UsageError(f"--firmware = {args.firmware!r}: runs in-process; leave --link {args.link} out")
+        args.link = f"ctypes:{args.firmware}"
     from sim_plant.sensors import load_noise_profile
 
     if args.n_candles < 1:

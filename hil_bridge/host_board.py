@@ -31,12 +31,19 @@ from hil_bridge.serial_link import SerialLink
 from hil_bridge.wire_link import WireLink
 
 REPO = Path(__file__).resolve().parents[1]
-DEFAULT_BOARD = REPO / "build" / "host" / "ffr-host-board"
 
 
 def board_program() -> Path:
+    """``$FFR_HOST_BOARD``, else a checkout's build, else the installed ffr's (built on first use)."""
     env = os.environ.get("FFR_HOST_BOARD")
-    return Path(env) if env else DEFAULT_BOARD
+    if env:
+        return Path(env)
+    from ffr_firmware.build import BuildError, host_build
+
+    try:
+        return host_build("host_board")
+    except BuildError as exc:
+        raise LinkError(f"host board program: {exc}") from None
 
 
 class BoardProcess:
