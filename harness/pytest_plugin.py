@@ -50,7 +50,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
                      "can:socketcan:can0")
     g.addoption("--ffr-seed", type=int, default=None, metavar="N", help="seed for every mission (default: the test's)")
     g.addoption("--ffr-noise", default=None, metavar="PROFILE",
-                help="noise profile for every mission (none, typical, datasheet, envelope, harsh, realistic, FILE.toml)")
+                help="noise profile for every mission (none, typical, datasheet, envelope, harsh, realistic, "
+                     "FILE.toml)")
     g.addoption("--ffr-set", action="append", default=[], metavar="KEY=VALUE",
                 help="firmware.NAME=V or robot.PATH=V for every mission (repeatable)")
     g.addoption("--ffr-profile", default=None, choices=("quick", "thorough"),
