@@ -111,3 +111,16 @@ def test_reality_group_round_trips_and_rejects_bad_input(tmp_path):
         with pytest.raises(FfrInputError, match=f"reality.{field}"):
             reality_from_table("f.toml", "p.reality", bad)
     assert not Reality().enabled and REAL.enabled
+
+
+def test_the_reality_command_prints_each_seeds_draw(capsys):
+    from sim_plant.reality import main
+    assert main(["0:3"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert len(lines) == 3 and lines[1].startswith("seed     1  chi0 ")
+    truth = REAL.draw(ROBOT, np.random.default_rng(1))
+    assert f"chi0 {truth.slip.track_factor:.3f}" in lines[1]
+    for bad in (["none", "1"], ["x:y"], ["nosuch", "1"], []):
+        assert main(bad) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1
