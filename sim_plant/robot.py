@@ -325,6 +325,9 @@ def override(robot: RobotParams, dotted: str, value: Any, source: str = "overrid
     if not dataclasses.is_dataclass(obj) or last not in {f.name for f in dataclasses.fields(obj)}:
         raise FfrInputError(source, f"robot.{dotted}", value, "no such robot parameter")
     old = getattr(obj, last)
+    if old is None:  # an unset calibration value: the field's type says what it takes
+        ftype = str(next(f.type for f in dataclasses.fields(obj) if f.name == last))
+        old = 0 if ftype.startswith("int") else 0.0
     if isinstance(old, bool):
         if not isinstance(value, bool):
             raise FfrInputError(source, f"robot.{dotted}", value, "must be true or false")

@@ -40,6 +40,10 @@ def test_a_calibration_section_sets_the_config_and_not_the_plant():
     cfg = build_config(robot)
     assert cfg["track_width_mm"] == np.float32(200.0) and cfg["wheel_radius_mm"] == np.float32(30.0)
     assert robot.track.track_width == ROBOT.track.track_width  # the plant's truth is unchanged
+    ticks = override(ROBOT, "calibration.ticks_per_rev", 720)
+    assert build_config(ticks)["encoder_ticks_per_rev"] == 720 and ticks.encoder.ticks_per_rev == 360
+    with pytest.raises(FfrInputError, match="calibration.ticks_per_rev"):
+        override(ROBOT, "calibration.ticks_per_rev", 2.5)
 
 
 @pytest.mark.parametrize("seed", range(0, 400, 7))
