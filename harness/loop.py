@@ -173,7 +173,7 @@ class Mission:
                 ST_DONE, ST_FAILED)
             link.steps += k
             candle.unpack(cs)
-            plant.apply(int(o16[2]), int(o16[3]))
+            plant.apply(int(o16[2]), int(o16[3]), bool(out_bytes[8]))
             if end == END_DONE:
                 done_t = t
             elif end == END_FAILED:
@@ -279,7 +279,7 @@ class Mission:
                 outcome = "failed"
                 detail = "firmware: " + FAIL_NAMES.get(int(out_bytes[15]), f"code {int(out_bytes[15])}")
                 break
-            plant.apply(pwm_l, pwm_r)
+            plant.apply(pwm_l, pwm_r, fan)
             plant.integrate(period)
             candle.update(t + period, period, fan, plant.x, plant.y, plant.theta)
             if scn.stop_on_contact and plant.contacts > 0:

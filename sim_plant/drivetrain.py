@@ -88,7 +88,8 @@ P_SCRUB_T = P_REAL + 5       # scrub torque at each wheel (N m) at full scrub
 P_SCRUB_WC = P_REAL + 6      # wheel-speed difference (rad/s) over which the scrub saturates
 P_RINT = P_REAL + 7          # battery internal resistance (ohm)
 P_WALL_MU = P_REAL + 8       # body-to-wall friction; < 0: a blocked move stops dead
-P_SIZE = P_REAL + 9
+P_FAN_I = P_REAL + 9         # battery current of the running fan (A)
+P_SIZE = P_REAL + 10
 
 # -- drive part of the state array (S) -----------------------------------------
 S_X = 0
@@ -232,6 +233,7 @@ def build_params(robot: RobotParams, h: float) -> np.ndarray:
         P[P_SCRUB_WC] = 1.0
     P[P_RINT] = robot.battery.internal_resistance
     P[P_WALL_MU] = sl.wall_mu
+    P[P_FAN_I] = robot.battery.fan_current
     return P
 
 
@@ -398,16 +400,18 @@ def scrub_torque(P: np.ndarray, w_l: float, w_r: float) -> float:
 
 
 @nb.njit(cache=True)
-def battery_voltages(S: np.ndarray, P: np.ndarray, pwm_l: int, pwm_r: int) -> tuple[float, float]:
+def battery_voltages(S: np.ndarray, P: np.ndarray, pwm_l: int, pwm_r: int,
+                     fan: float = 0.0) -> tuple[float, float]:
     """Armature voltages (left, right) from a battery that sags by R_int times the current it
-    delivers, the duty-weighted motor currents at the start of the step (an H-bridge draws d i)."""
+    delivers: the duty-weighted motor currents at the start of the step (an H-bridge draws d i),
+    plus the fan's current while ``fan`` (1.0) runs."""
     el = pwm_to_voltage(pwm_l, P)
     er = pwm_to_voltage(pwm_r, P)
     rint = P[P_RINT]
     if rint == 0.0:
         return el, er
     vb = P[P_BATT]
-    i_batt = (el * S[S_LEFT] + er * S[S_RIGHT]) / vb
+    i_batt = (el * S[S_LEFT] + er * S[S_RIGHT]) / vb + fan * P[P_FAN_I]
     k = max(0.0, vb - rint * i_batt) / vb
     return el * k, er * k
 
@@ -433,14 +437,15 @@ def wrap_angle(th: float) -> float:
 
 @nb.njit(cache=True)
 def drive_step(S: np.ndarray, P: np.ndarray, pwm_l: int, pwm_r: int, el: float,
-               er: float) -> tuple[float, float]:
+               er: float, fan: float = 0.0) -> tuple[float, float]:
     """Both sides one step h; returns the body's (path distance, heading change). el, er: the
-    armature voltages of an ideal battery (used as they are when every reality effect is off)."""
+    armature voltages of an ideal battery (used as they are when every reality effect is off);
+    fan: 1.0 while the fan runs (its current sags the battery)."""
     if P[P_REAL] == 0.0:
         dl = side_step(S, S_LEFT, el, P)
         dr = side_step(S, S_RIGHT, er, P)
         return body_motion(dl, dr, P)
-    vl, vr = battery_voltages(S, P, pwm_l, pwm_r)
+    vl, vr = battery_voltages(S, P, pwm_l, pwm_r, fan)
     wl0 = S[S_LEFT + 1]
     wr0 = S[S_RIGHT + 1]
     ts = scrub_torque(P, wl0, wr0)

@@ -53,7 +53,8 @@ S_CONTACTS = S_DRIVE_SIZE + 1
 S_IN_CONTACT = S_DRIVE_SIZE + 2
 S_MIN_CLEAR = S_DRIVE_SIZE + 3
 S_PATH = S_DRIVE_SIZE + 4
-S_SIZE = S_DRIVE_SIZE + 5
+S_FAN = S_DRIVE_SIZE + 5     # 1.0 while the fan runs (held like the PWM; its battery current)
+S_SIZE = S_DRIVE_SIZE + 6
 
 _CLEARANCE_CUTOFF = 1e3  # m, larger than any arena
 
@@ -88,7 +89,7 @@ def _advance(S: np.ndarray, P: np.ndarray, poly: np.ndarray, wall_polys: np.ndar
     free0 = free
     moved = 0.0
     for _ in range(n):
-        ds, dth = drive_step(S, P, pwm_l, pwm_r, el, er)
+        ds, dth = drive_step(S, P, pwm_l, pwm_r, el, er, S[S_FAN])
         x = S[S_X]
         y = S[S_Y]
         th = S[S_TH]
@@ -181,10 +182,11 @@ class Plant:
             raise FfrInputError(source, "start", value, "robot footprint is outside the arena")
 
     # -- stepping --------------------------------------------------------------
-    def apply(self, pwm_l: int, pwm_r: int) -> None:
-        """Set the PWM (per mille, clipped to +-full scale), held until the next apply."""
+    def apply(self, pwm_l: int, pwm_r: int, fan: bool = False) -> None:
+        """Set the PWM (per mille, clipped to +-full scale) and the fan, held until the next apply."""
         self._pwm_l = int(pwm_l)
         self._pwm_r = int(pwm_r)
+        self._S[S_FAN] = 1.0 if fan else 0.0
 
     def steps_for(self, dt: float) -> int:
         """Plant steps in dt seconds; dt must be a whole number of them."""

@@ -38,13 +38,13 @@ Range = tuple[float, float]
 _RANGES: dict[str, tuple[float, float]] = {
     "track_factor": (1.0, 3.0), "turn_radius": (1e-3, 10.0), "creep": (0.0, 0.9),
     "floor_mu": (0.05, 2.0), "scrub_mu": (0.0, 2.0), "wall_mu": (0.0, 2.0),
-    "internal_resistance": (0.0, 10.0),
+    "internal_resistance": (0.0, 10.0), "fan_current": (0.0, 10.0),
 }
 # ± half-widths (fractions, or mm / degrees for the ranger mounts)
 _SPREADS = ("motor_spread", "side_motor", "side_friction", "side_wheel_radius", "ir_mount_mm",
             "ir_mount_deg", "cal_wheel_radius", "cal_track_width")
-# uniforms drawn per mission when a reality group is on: 7 ranges, 2 + 6 spreads, 3 x 5 mounts, 2 calibration
-N_DRAWS = 32
+# uniforms drawn per mission when a reality group is on: 8 ranges, 2 + 6 spreads, 3 x 5 mounts, 2 calibration
+N_DRAWS = 33
 
 
 @dataclass(frozen=True)
@@ -56,6 +56,7 @@ class Reality:
     scrub_mu: Range = (0.0, 0.0)          # lateral friction of the scrub torque
     wall_mu: Range = (-1.0, -1.0)         # body-to-wall friction (< 0: no slide)
     internal_resistance: Range = (0.0, 0.0)  # ohm
+    fan_current: Range = (0.0, 0.0)       # A while the fan runs
     motor_spread: float = 0.0       # ± fraction on R and the motor constant (both sides alike)
     side_motor: float = 0.0         # ± fraction per side on the motor constant
     side_friction: float = 0.0      # ± fraction per side on the track friction
@@ -89,6 +90,7 @@ class Reality:
         sl.scrub_mu = rng_in(self.scrub_mu)
         sl.wall_mu = rng_in(self.wall_mu)
         t.battery.internal_resistance = rng_in(self.internal_resistance)
+        t.battery.fan_current = rng_in(self.fan_current)
         km = 1.0 + pm(self.motor_spread)
         t.motor.Kt *= km
         t.motor.Kb *= km

@@ -121,6 +121,7 @@ class Sides:
 @dataclass
 class Battery:
     internal_resistance: float = 0.0  # ohm; 0: an ideal source
+    fan_current: float = 0.0          # A drawn while the fan runs (sags the motors' supply with R_int)
 
 
 @dataclass

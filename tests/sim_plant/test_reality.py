@@ -201,6 +201,27 @@ def test_battery_voltage_sags_with_the_current_it_delivers():
     assert vr == pytest.approx(-0.25 * v, rel=1e-12)
 
 
+def test_the_running_fan_adds_its_current_to_the_sag():
+    robot = with_(battery__internal_resistance=0.5, battery__fan_current=0.4)
+    P = build_params(robot, H)
+    S = np.zeros(9)
+    S[3], S[6] = 0.8, 0.3
+    off = battery_voltages(S, P, 600, 600, 0.0)
+    on = battery_voltages(S, P, 600, 600, 1.0)
+    v_off = 9.0 - 0.5 * (0.6 * 0.8 + 0.6 * 0.3)
+    assert off[0] == pytest.approx(0.6 * v_off, rel=1e-12)
+    assert on[0] == pytest.approx(0.6 * (v_off - 0.5 * 0.4), rel=1e-12)
+    # in the plant: the fan, held by apply(), slows the robot only while it runs
+    speeds = []
+    for fan in (False, True):
+        plant = Plant(ARENA, robot, 1.2, 2.2, 0.0)
+        for _ in range(100):
+            plant.apply(600, 600, fan)
+            plant.integrate(0.01)
+        speeds.append(plant.omega_l)
+    assert speeds[1] < speeds[0]
+
+
 @pytest.mark.parametrize("r_int", [0.2, 1.0, 3.0])
 @pytest.mark.parametrize("pwm", [400, 1000])
 def test_battery_sag_lowers_the_steady_speed_as_calculated(r_int, pwm):
