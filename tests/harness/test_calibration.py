@@ -128,3 +128,19 @@ def test_the_reality_command_prints_each_seeds_draw(capsys):
         assert main(bad) == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1
+
+
+def test_the_exact_calibration_profile_is_realistic_without_calibration_error():
+    from pathlib import Path
+    path = Path(__file__).resolve().parents[2] / "scenarios" / "realistic_exact_calibration.toml"
+    exact = load_noise_profile(str(path))
+    real = load_noise_profile("realistic")
+    assert exact.reality.cal_wheel_radius == exact.reality.cal_track_width == 0.0
+    assert exact.ir == real.ir and exact.flame == real.flame
+    for seed in (0, 7, 46):
+        a = exact.reality.draw(ROBOT, np.random.default_rng(seed))
+        b = real.reality.draw(ROBOT, np.random.default_rng(seed))
+        assert a.slip == b.slip and a.sides == b.sides and a.battery == b.battery  # the same truth
+        spun = a.slip.track_factor * ROBOT.track.track_width
+        assert a.calibration.track_width == pytest.approx(spun, rel=1e-15)
+        assert a.calibration.track_width != b.calibration.track_width
