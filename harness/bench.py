@@ -32,7 +32,9 @@ import numpy as np
 from harness.loop import I_SENS, run_mission
 from harness.scenario import make_scenario
 from harness.tick import _call_step
+from sim_plant.drivetrain import build_params, run_free
 from sim_plant.plant import _advance
+from sim_plant.robot import RobotParams
 from sim_plant.sensors.suite import _sample_kernel
 
 REPO = Path(__file__).resolve().parents[1]
@@ -91,6 +93,12 @@ def _plant_loop(pwm: np.ndarray, S: np.ndarray, P: np.ndarray, poly: np.ndarray,
 
 
 @nb.njit(cache=True)
+def _drive_loop(pwm: np.ndarray, S: np.ndarray, P: np.ndarray, n_sub: int) -> None:
+    for k in range(pwm.shape[0]):
+        run_free(S, P, pwm[k, 0], pwm[k, 1], n_sub)
+
+
+@nb.njit(cache=True)
 def _firmware_loop(fn: int, st: int, inputs: int, in_size: int, out: int, n: int) -> None:
     for k in range(n):
         _call_step(fn, st, inputs + k * in_size, out)
@@ -134,6 +142,33 @@ def bench_parts(repeat: int) -> float:
         S[:] = S0
         _plant_loop(pwm, S, P, poly, walls, bbox, n_sub)
 
+    # Drive-train reality (sim_plant/reality.py): a realistic room 4 mission (seed 2 ends home
+    # without a contact) replayed through its own drawn plant (slip, scrub, per-side constants,
+    # battery sag, wall friction on) and through the ideal plant; and the drive train alone (no
+    # walls) on that PWM, ideal vs reality on, the fair per-step comparison.
+    rscn = make_scenario(room=4, noise="realistic", seed=2)
+    real_robot = rscn.noise.reality.draw(rscn.robot, np.random.default_rng(rscn.seed))
+    _, rtr = run_mission(rscn)
+    rpwm = rtr.i[:, :2].astype(np.int64)
+    nr = len(rpwm)
+
+    def plant_on(robot: RobotParams) -> Callable[[], None]:
+        def run() -> None:
+            p = Plant(scn.arena, robot, *scn.start, plant_dt=tm.plant_dt_ms / 1000.0)
+            S, P, poly, walls, bbox = p.kernel_args()
+            _plant_loop(rpwm, S, P, poly, walls, bbox, n_sub)
+        return run
+
+    def drive_on(robot: RobotParams) -> Callable[[], None]:
+        P = build_params(robot, tm.plant_dt_ms / 1000.0)
+
+        def run() -> None:
+            _drive_loop(rpwm, np.zeros(9), P, n_sub)
+        return run
+
+    plant_real, plant_ideal = plant_on(real_robot), plant_on(scn.robot)
+    drive_real, drive_ideal = drive_on(real_robot), drive_on(scn.robot)
+
     link = CtypesLink()
     inputs = np.zeros(n, dtype=INPUTS_DTYPE)
     inputs["t_ms"] = np.arange(n) * tm.firmware_period_ms
@@ -162,7 +197,7 @@ def bench_parts(repeat: int) -> float:
         for k in range(n):
             step(st, base + k * size, o)
 
-    for fn in (sensors, plant_run, firmware):
+    for fn in (sensors, plant_run, plant_real, drive_real, firmware):
         fn()  # compile / load
     print(f"per tick, inside compiled code, replaying a room 4 mission with typical noise "
           f"({n} ticks, best of {repeat}):")
@@ -174,6 +209,12 @@ def bench_parts(repeat: int) -> float:
         costs[name] = _best(fn, repeat) / n * 1e6
         print(f"  {name:52s} {costs[name]:6.2f} us")
     fw = costs[rows[2][0]]
+    print(f"drive-train reality, a realistic room 4 mission's PWM ({nr} ticks, best of {repeat}):")
+    for name, fn in (("plant, ideal drive train (the default)", plant_ideal),
+                     ("plant, reality on (its own drawn robot)", plant_real),
+                     ("drive train alone, no walls, ideal", drive_ideal),
+                     ("drive train alone, no walls, reality on", drive_real)):
+        print(f"  {name:52s} {_best(fn, repeat) / nr * 1e6:6.2f} us")
     print(f"  {'firmware ffr_step through ctypes from Python':52s} "
           f"{_best(firmware_ctypes, max(1, repeat // 2)) / n * 1e6:6.2f} us")
     floor = fw * n / 1e6

@@ -52,7 +52,9 @@ def build_parser() -> argparse.ArgumentParser:
                         help="a firmware library to run in-process (the same as --link ctypes:LIB.so)")
         sp.add_argument("--json", metavar="FILE|-", help="write the result(s) as JSON")
         sp.add_argument("--plot", metavar="FILE.png", help="draw the arena and the robot's path(s)")
-        sp.add_argument("--noise", default=None, help="sensor noise profile (none, typical, harsh, FILE.toml)")
+        sp.add_argument("--noise", default=None,
+                        help="sensor noise profile (none, typical, datasheet, envelope, harsh, FILE.toml; "
+                             "realistic: also a robot and its calibration drawn from the seed)")
         sp.add_argument("--arena", default=None, help="arena TOML file (default: the 2004 arena)")
         sp.add_argument("--robot", default=None, help="robot TOML file (default: the shipped robot)")
         sp.add_argument("--set", dest="settings", type=_setting, action="append", default=[],

@@ -1,8 +1,11 @@
 """Build the firmware's configuration for a simulated robot.
 
 Start from the firmware's own defaults (``ffr_config_default``), write the
-robot's geometry into it (the firmware must be configured for the robot it
-drives: wheel radius, track width, encoder resolution, ranger poses), then
+robot's geometry into it as the team calibrated it (the robot's
+``[calibration]``: what was measured, by default exactly the robot's values;
+under the ``realistic`` profile drawn apart from the plant's truth, see
+``sim_plant/reality.py``): wheel radius, track width, encoder resolution,
+ranger poses; then
 apply the scenario's tuning overrides by field name.
 """
 
@@ -20,14 +23,17 @@ from sim_plant.robot import IR_NAMES, RobotParams
 
 
 def geometry_from_robot(cfg: np.ndarray, robot: RobotParams) -> None:
-    cfg["wheel_radius_mm"] = robot.track.wheel_radius * 1000.0
-    cfg["track_width_mm"] = robot.track.track_width * 1000.0
-    cfg["encoder_ticks_per_rev"] = float(robot.encoder.ticks_per_rev)
+    """The robot's geometry as the team calibrated it (``RobotParams.calibrated``: the robot
+    file's ``[calibration]``, by default exactly the robot's values), never the plant's truth."""
+    wheel_radius, track_width, ticks, ir = robot.calibrated()
+    cfg["wheel_radius_mm"] = wheel_radius * 1000.0
+    cfg["track_width_mm"] = track_width * 1000.0
+    cfg["encoder_ticks_per_rev"] = float(ticks)
     cfg["body_front_mm"] = robot.body.length_front * 1000.0
     cfg["body_half_width_mm"] = robot.body.width * 500.0
-    cfg["ir_x_mm"] = [robot.ir[n].x * 1000.0 for n in IR_NAMES]
-    cfg["ir_y_mm"] = [robot.ir[n].y * 1000.0 for n in IR_NAMES]
-    cfg["ir_angle_deg"] = [robot.ir[n].angle_deg for n in IR_NAMES]
+    cfg["ir_x_mm"] = [ir[n].x * 1000.0 for n in IR_NAMES]
+    cfg["ir_y_mm"] = [ir[n].y * 1000.0 for n in IR_NAMES]
+    cfg["ir_angle_deg"] = [ir[n].angle_deg for n in IR_NAMES]
     cfg["line_sensor_x_mm"] = robot.line_sensor.x * 1000.0
 
 

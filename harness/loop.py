@@ -16,7 +16,7 @@ bit for bit (tests/harness/test_compiled_tick.py).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -47,6 +47,7 @@ from harness.tick import (
 )
 from sim_plant.candle import Candle
 from sim_plant.plant import Plant
+from sim_plant.robot import RobotParams
 from sim_plant.sensors import N_CHANNELS, SensorSuite, new_output
 
 # Byte offsets the compiled packer writes to, taken from the checked dtypes.
@@ -98,6 +99,10 @@ class Mission:
     scenario: Scenario
     link: FirmwareLink
     rules: ScoringRules
+    # set by run(): the plant's truth (the scenario's robot, or the realistic draw) and the
+    # configuration the firmware was given (from the truth's calibration only)
+    truth: RobotParams | None = field(default=None, repr=False)
+    config: np.ndarray | None = field(default=None, repr=False)
 
     @classmethod
     def create(cls, scn: Scenario, link: FirmwareLink | str = "ctypes:",
@@ -120,12 +125,18 @@ class Mission:
         tm = scn.timing
         period_ms = tm.firmware_period_ms
         period = period_ms / 1000.0
-        plant = Plant(scn.arena, scn.robot, *scn.start, plant_dt=tm.plant_dt_ms / 1000.0,
-                      source=scn.source)
-        candle = Candle(scn.candle[0], scn.candle[1], scn.robot, scn.arena)
         rng = np.random.default_rng(scn.seed)
-        sensors = SensorSuite(scn.arena, scn.robot, candle, scn.noise, rng)
-        cfg = build_config(scn.robot, scn.firmware, scn.source)
+        # The plant's truth: the scenario's robot, or under a profile with a reality group
+        # (``realistic``) a robot drawn from the seed carrying the team's calibration of it. The
+        # firmware's configuration comes from the calibration only (firmware_config.py).
+        robot = scn.noise.reality.draw(scn.robot, rng) if scn.noise.reality.enabled else scn.robot
+        self.truth = robot
+        plant = Plant(scn.arena, robot, *scn.start, plant_dt=tm.plant_dt_ms / 1000.0,
+                      source=scn.source)
+        candle = Candle(scn.candle[0], scn.candle[1], robot, scn.arena)
+        sensors = SensorSuite(scn.arena, robot, candle, scn.noise, rng)
+        cfg = build_config(robot, scn.firmware, scn.source)
+        self.config = cfg
         if not compiled:
             warm_up(scn, record)  # before the reset: a board's watchdog runs from there
         counters0 = link.link_counters()
@@ -162,7 +173,7 @@ class Mission:
                 ST_DONE, ST_FAILED)
             link.steps += k
             candle.unpack(cs)
-            plant.apply(int(o16[2]), int(o16[3]))
+            plant.apply(int(o16[2]), int(o16[3]), bool(out_bytes[8]))
             if end == END_DONE:
                 done_t = t
             elif end == END_FAILED:
@@ -270,7 +281,7 @@ class Mission:
                 outcome = "failed"
                 detail = "firmware: " + FAIL_NAMES.get(int(out_bytes[15]), f"code {int(out_bytes[15])}")
                 break
-            plant.apply(pwm_l, pwm_r)
+            plant.apply(pwm_l, pwm_r, fan)
             plant.integrate(period)
             candle.update(t + period, period, fan, plant.x, plant.y, plant.theta)
             if scn.stop_on_contact and plant.contacts > 0:

@@ -5,7 +5,9 @@ Strategies: legal candle positions (by the arena's own rules,
 within the documented envelope (``ENVELOPE``: gaussian sigma on every
 sensor, bias, dropouts, spikes, line misreads, encoder slip, flame-sensor
 noise, and each part's own gain and offset), robot parameter spread (±10 %
-on the motors and the drive geometry).
+on the motors and the drive geometry); ``realistic_scenarios``: missions
+under the ``realistic`` profile (plant truth and the team's calibration drawn
+apart from the seed, sim_plant/reality.py).
 
 ``check_mission`` runs one scenario and checks the properties: home with the
 flame out, no wall touched, the flame out within the find limit (5 min) and
@@ -196,6 +198,19 @@ def scenarios(draw: st.DrawFn, env: Envelope = ENVELOPE, scale: float = 1.0,
     seed = draw(st.integers(0, 2**32 - 1))
     return make_scenario(arena=arena, candle=candle, start=start, noise=noise, robot_overrides=ro, seed=seed,
                          name="property", source="hypothesis")
+
+
+@st.composite
+def realistic_scenarios(draw: st.DrawFn, env: Envelope = ENVELOPE,
+                        rooms: tuple[int, ...] | None = None) -> Scenario:
+    """A mission under the ``realistic`` profile: candle, start and seed drawn; the seed draws the
+    plant's truth and the team's calibration apart (sim_plant/reality.py)."""
+    arena = load_arena()
+    candle = draw(candles(arena, rooms))
+    start = draw(start_poses(arena, env))
+    seed = draw(st.integers(0, 2**32 - 1))
+    return make_scenario(arena=arena, candle=candle, start=start, noise="realistic", seed=seed,
+                         name="property-realistic", source="hypothesis")
 
 
 def violations(res: Any) -> list[str]:

@@ -50,7 +50,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
                      "can:socketcan:can0")
     g.addoption("--ffr-seed", type=int, default=None, metavar="N", help="seed for every mission (default: the test's)")
     g.addoption("--ffr-noise", default=None, metavar="PROFILE",
-                help="noise profile for every mission (none, typical, datasheet, harsh, FILE.toml)")
+                help="noise profile for every mission (none, typical, datasheet, envelope, harsh, realistic, "
+                     "FILE.toml)")
     g.addoption("--ffr-set", action="append", default=[], metavar="KEY=VALUE",
                 help="firmware.NAME=V or robot.PATH=V for every mission (repeatable)")
     g.addoption("--ffr-profile", default=None, choices=("quick", "thorough"),
@@ -178,7 +179,7 @@ def replay_command(scn: Any, link_url: str, failures_dir: str | Path | None) -> 
     link = [] if link_url == "ctypes:" else ["--link", link_url]
     if simple:
         argv = ["ffr", "run", "--candle", f"{scn.candle[0]!r},{scn.candle[1]!r}", "--seed", str(scn.seed)]
-        if scn.noise.enabled:
+        if scn.noise.enabled or scn.noise.reality.enabled:
             argv += ["--noise", noise_name]
         for group, d in (("firmware", scn.firmware), ("robot", scn.robot_overrides)):
             argv += [a for k, v in d.items() for a in ("--set", f"{group}.{k}={json.dumps(v)}")]

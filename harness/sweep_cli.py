@@ -48,7 +48,9 @@ def add_sweep_parser(sub: Any) -> None:
     sp.add_argument("--grid-step", type=float, default=0.10, help="grid spacing in m (default 0.10)")
     sp.add_argument("--seeds", type=lambda t: _int_list(t, "--seeds"), default=(0,),
                     help="noise seeds: A:B or N,N,... (default 0)")
-    sp.add_argument("--noise", default="none", help="noise profile (none, typical, datasheet, harsh, FILE.toml)")
+    sp.add_argument("--noise", default="none",
+                    help="noise profile (none, typical, datasheet, envelope, harsh, FILE.toml; realistic: "
+                         "datasheet sensors on a robot and its calibration drawn from each seed)")
     sp.add_argument("--param", type=_param, action="append", default=[], metavar="KEY=LO:HI:N",
                     help="swept setting, firmware.NAME or robot.PATH; LO:HI:N or V1,V2,... (repeatable)")
     sp.add_argument("--mode", choices=("grid", "random"), default="grid",

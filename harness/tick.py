@@ -27,7 +27,7 @@ from numba.extending import intrinsic
 from harness.events import apply_events
 from sim_plant.candle import CS_EXT_AT, CS_LIT, update_kernel
 from sim_plant.drivetrain import S_LEFT, S_RIGHT, S_TH, S_X, S_Y
-from sim_plant.plant import S_CONTACTS, S_IN_CONTACT, _advance
+from sim_plant.plant import S_CONTACTS, S_FAN, S_IN_CONTACT, _advance
 from sim_plant.sensors.suite import _sample_kernel
 
 # Why the kernel stopped (loop.py turns these into outcome and detail).
@@ -136,6 +136,7 @@ def mission_kernel(fn_step: int, st_ptr: int, in_ptr: int, out_ptr: int,
             return END_DONE, k, t
         if state == st_failed:
             return END_FAILED, k, t
+        S[S_FAN] = 1.0 if fan else 0.0  # Plant.apply's fan
         if n_sub:
             _advance(S, P, poly, walls, bbox, pwm_l, pwm_r, n_sub)
         update_kernel(cs, cp, edges, t + period, period, fan, S[S_X], S[S_Y], S[S_TH])

@@ -26,9 +26,11 @@ from sim_plant.collision import (
     footprint_polygon,
     limit_move,
     released,
+    slide_along,
 )
 from sim_plant.drivetrain import (
     P_RMAX,
+    P_WALL_MU,
     S_DRIVE_SIZE,
     S_LEFT,
     S_RIGHT,
@@ -36,10 +38,9 @@ from sim_plant.drivetrain import (
     S_X,
     S_Y,
     arc_step,
-    body_motion,
     build_params,
+    drive_step,
     pwm_to_voltage,
-    side_step,
     wrap_angle,
 )
 from sim_plant.errors import FfrInputError
@@ -52,7 +53,8 @@ S_CONTACTS = S_DRIVE_SIZE + 1
 S_IN_CONTACT = S_DRIVE_SIZE + 2
 S_MIN_CLEAR = S_DRIVE_SIZE + 3
 S_PATH = S_DRIVE_SIZE + 4
-S_SIZE = S_DRIVE_SIZE + 5
+S_FAN = S_DRIVE_SIZE + 5     # 1.0 while the fan runs (held like the PWM; its battery current)
+S_SIZE = S_DRIVE_SIZE + 6
 
 _CLEARANCE_CUTOFF = 1e3  # m, larger than any arena
 
@@ -87,9 +89,7 @@ def _advance(S: np.ndarray, P: np.ndarray, poly: np.ndarray, wall_polys: np.ndar
     free0 = free
     moved = 0.0
     for _ in range(n):
-        dl = side_step(S, S_LEFT, el, P)
-        dr = side_step(S, S_RIGHT, er, P)
-        ds, dth = body_motion(dl, dr, P)
+        ds, dth = drive_step(S, P, pwm_l, pwm_r, el, er, S[S_FAN])
         x = S[S_X]
         y = S[S_Y]
         th = S[S_TH]
@@ -108,10 +108,15 @@ def _advance(S: np.ndarray, P: np.ndarray, poly: np.ndarray, wall_polys: np.ndar
             free = -1.0  # once near a wall, test every remaining step
             nx, ny, nth, frac = limit_move(poly, x, y, th, ds, dth, P, wall_polys, wall_bbox)
             blocked = frac < 1.0
+            S[S_PATH] += abs(ds) * frac
+            if blocked and P[P_WALL_MU] >= 0.0:
+                # friction contact: the rest of the move slides along the wall (collision.py)
+                nx, ny, nth, slid = slide_along(poly, nx, ny, nth, x, y, th, ds, dth, P,
+                                                wall_polys, wall_bbox)
+                S[S_PATH] += slid
             S[S_X] = nx
             S[S_Y] = ny
             S[S_TH] = wrap_angle(nth)
-            S[S_PATH] += abs(ds) * frac
         if blocked:
             if S[S_IN_CONTACT] == 0.0:
                 S[S_CONTACTS] += 1.0
@@ -177,10 +182,11 @@ class Plant:
             raise FfrInputError(source, "start", value, "robot footprint is outside the arena")
 
     # -- stepping --------------------------------------------------------------
-    def apply(self, pwm_l: int, pwm_r: int) -> None:
-        """Set the PWM (per mille, clipped to +-full scale), held until the next apply."""
+    def apply(self, pwm_l: int, pwm_r: int, fan: bool = False) -> None:
+        """Set the PWM (per mille, clipped to +-full scale) and the fan, held until the next apply."""
         self._pwm_l = int(pwm_l)
         self._pwm_r = int(pwm_r)
+        self._S[S_FAN] = 1.0 if fan else 0.0
 
     def steps_for(self, dt: float) -> int:
         """Plant steps in dt seconds; dt must be a whole number of them."""

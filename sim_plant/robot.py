@@ -94,6 +94,48 @@ class Fans:
 
 
 @dataclass
+class Slip:
+    """Skid-steer slip, scrub and wall friction (docs/drivetrain.md "Reality"). The defaults are
+    the ideal drive train of the paper's equations: no slip, no scrub, a wall stops the robot."""
+
+    track_factor: float = 1.0     # chi_0: effective / geometric track width when spinning in place
+    turn_radius: float = 0.10     # m: turn radius at which chi - 1 has fallen to half (chosen)
+    creep: float = 0.0            # longitudinal slip fraction at the traction limit (0: none)
+    floor_mu: float = 0.6         # floor traction coefficient: traction limit floor_mu * g
+    scrub_mu: float = 0.0         # lateral friction coefficient of the scrub torque (0: none)
+    contact_length: float = 0.12  # m, track contact length the scrub moment acts over (chosen)
+    wall_mu: float = -1.0         # body-to-wall friction; < 0: no sliding (the robot stops dead)
+
+
+@dataclass
+class Sides:
+    """Per-side scale factors on the nominal [motor] and [track] values (1 = identical sides)."""
+
+    left_motor: float = 1.0       # scales Kt and Kb (the motor constant)
+    right_motor: float = 1.0
+    left_friction: float = 1.0    # scales the track's Coulomb friction torque T_f
+    right_friction: float = 1.0
+    left_wheel_radius: float = 1.0
+    right_wheel_radius: float = 1.0
+
+
+@dataclass
+class Battery:
+    internal_resistance: float = 0.0  # ohm; 0: an ideal source
+    fan_current: float = 0.0          # A drawn while the fan runs (sags the motors' supply with R_int)
+
+
+@dataclass
+class Calibration:
+    """What the team measured and configures the firmware with. None: exactly the robot's value."""
+
+    wheel_radius: float | None = None
+    track_width: float | None = None
+    ticks_per_rev: int | None = None
+    ir: dict[str, IrPose] = field(default_factory=dict)
+
+
+@dataclass
 class RobotParams:
     body: Body
     track: Track
@@ -103,7 +145,24 @@ class RobotParams:
     line_sensor: LineSensor
     flame: Flame
     fans: Fans
+    slip: Slip = field(default_factory=Slip)
+    sides: Sides = field(default_factory=Sides)
+    battery: Battery = field(default_factory=Battery)
+    calibration: Calibration = field(default_factory=Calibration)
     source: str = field(default="robot", compare=False)
+
+    @property
+    def ideal_drive(self) -> bool:
+        """True when none of the drive-train reality effects is on (the paper's equations)."""
+        return self.slip == Slip() and self.sides == Sides() and self.battery == Battery()
+
+    def calibrated(self) -> tuple[float, float, int, dict[str, IrPose]]:
+        """(wheel radius, track width, ticks per rev, ranger poses) the firmware is configured with."""
+        c = self.calibration
+        return (self.track.wheel_radius if c.wheel_radius is None else c.wheel_radius,
+                self.track.track_width if c.track_width is None else c.track_width,
+                self.encoder.ticks_per_rev if c.ticks_per_rev is None else c.ticks_per_rev,
+                {n: c.ir.get(n, self.ir[n]) for n in IR_NAMES})
 
     def footprint(self) -> tuple[float, float, float, float]:
         """(front, rear, left, right) extents of the body rectangle in the body frame."""
@@ -142,7 +201,68 @@ def _section(root: _Reader, name: str, cls: type) -> Any:
     return cls(**kwargs)
 
 
-ROBOT_SECTIONS = ("body", "track", "motor", "encoder", "ir", "line_sensor", "flame", "fans")
+def _optional(root: _Reader, name: str, cls: type) -> Any:
+    """An optional section of numbers, every field defaulting to the dataclass's default."""
+    if name not in root.table:
+        return cls()
+    sec = root.sub(name)
+    kwargs: dict[str, Any] = {}
+    for f in dataclasses.fields(cls):
+        if f.name in sec.table:
+            lo = None if (name, f.name) == ("slip", "wall_mu") else 0.0
+            kwargs[f.name] = sec.number(f.name, lo=lo)
+    unknown = set(sec.table) - {f.name for f in dataclasses.fields(cls)}
+    if unknown:
+        k = sorted(unknown)[0]
+        raise FfrInputError(root.source, f"{name}.{k}", sec.table[k], "unknown field")
+    obj = cls(**kwargs)
+    for f in dataclasses.fields(cls):
+        v = getattr(obj, f.name)
+        bad = ((name == "sides" and v <= 0.0)
+               or (name == "slip" and f.name == "track_factor" and not 1.0 <= v <= 3.0)
+               or (name == "slip" and f.name == "creep" and v >= 1.0)
+               or (name == "slip" and f.name in ("turn_radius", "floor_mu", "contact_length") and v <= 0.0))
+        if bad:
+            raise FfrInputError(root.source, f"{name}.{f.name}", v,
+                                "out of range (docs/drivetrain.md lists each field's range)")
+    return obj
+
+
+def _calibration(root: _Reader) -> Calibration:
+    if "calibration" not in root.table:
+        return Calibration()
+    sec = root.sub("calibration")
+    known = {"wheel_radius", "track_width", "ticks_per_rev", "ir"}
+    unknown = set(sec.table) - known
+    if unknown:
+        k = sorted(unknown)[0]
+        raise FfrInputError(root.source, f"calibration.{k}", sec.table[k], "unknown field")
+    cal = Calibration()
+    for key in ("wheel_radius", "track_width"):
+        if sec.table.get(key) is not None:
+            setattr(cal, key, sec.number(key, positive=True))
+    t = sec.table.get("ticks_per_rev")
+    if t is not None:
+        if isinstance(t, bool) or not isinstance(t, int) or t <= 0:
+            raise FfrInputError(root.source, "calibration.ticks_per_rev", t, "must be a positive integer")
+        cal.ticks_per_rev = t
+    if "ir" in sec.table:
+        ir_tab = sec.sub("ir")
+        for n in ir_tab.table:
+            if n not in IR_NAMES:
+                raise FfrInputError(root.source, f"calibration.ir.{n}", "...",
+                                    f"unknown ranger (known: {IR_NAMES})")
+            s = ir_tab.sub(n)
+            extra = set(s.table) - {"x", "y", "angle_deg"}
+            if extra:
+                k = sorted(extra)[0]
+                raise FfrInputError(root.source, f"calibration.ir.{n}.{k}", s.table[k], "unknown field")
+            cal.ir[n] = IrPose(s.number("x"), s.number("y"), s.number("angle_deg", lo=-360, hi=360))
+    return cal
+
+
+ROBOT_SECTIONS = ("body", "track", "motor", "encoder", "ir", "line_sensor", "flame", "fans", "slip", "sides",
+                  "battery", "calibration")
 
 
 def robot_from_dict(data: dict[str, Any], source: str) -> RobotParams:
@@ -170,6 +290,10 @@ def robot_from_dict(data: dict[str, Any], source: str) -> RobotParams:
         line_sensor=_section(root, "line_sensor", LineSensor),
         flame=_section(root, "flame", Flame),
         fans=_section(root, "fans", Fans),
+        slip=_optional(root, "slip", Slip),
+        sides=_optional(root, "sides", Sides),
+        battery=_optional(root, "battery", Battery),
+        calibration=_calibration(root),
         source=source,
     )
     b = robot.body
@@ -191,6 +315,15 @@ def load_robot(path: str | Path | None = None) -> RobotParams:
     return robot_from_dict(read_toml(p), str(p))
 
 
+def robot_to_dict(robot: RobotParams) -> dict[str, Any]:
+    """The robot as the dict ``robot_from_dict`` reads (a calibration's unset fields left out)."""
+    data = dataclasses.asdict(robot) | {"ir": {k: dataclasses.asdict(v) for k, v in robot.ir.items()}}
+    data.pop("source", None)
+    cal = {k: v for k, v in data["calibration"].items() if v is not None and v != {}}
+    data["calibration"] = cal
+    return data
+
+
 def override(robot: RobotParams, dotted: str, value: Any, source: str = "override") -> RobotParams:
     """A copy of ``robot`` with one field changed, e.g. ``"motor.R"`` or ``"ir.LF.angle_deg"``."""
     new = copy.deepcopy(robot)
@@ -204,6 +337,9 @@ def override(robot: RobotParams, dotted: str, value: Any, source: str = "overrid
     if not dataclasses.is_dataclass(obj) or last not in {f.name for f in dataclasses.fields(obj)}:
         raise FfrInputError(source, f"robot.{dotted}", value, "no such robot parameter")
     old = getattr(obj, last)
+    if old is None:  # an unset calibration value: the field's type says what it takes
+        ftype = str(next(f.type for f in dataclasses.fields(obj) if f.name == last))
+        old = 0 if ftype.startswith("int") else 0.0
     if isinstance(old, bool):
         if not isinstance(value, bool):
             raise FfrInputError(source, f"robot.{dotted}", value, "must be true or false")
@@ -217,8 +353,7 @@ def override(robot: RobotParams, dotted: str, value: Any, source: str = "overrid
         value = float(value)
     setattr(obj, last, value)
     # Re-validate the whole set so an override can't produce an illegal robot.
-    data = dataclasses.asdict(new) | {"ir": {k: dataclasses.asdict(v) for k, v in new.ir.items()}}
-    data.pop("source", None)
+    data = robot_to_dict(new)
     try:
         return robot_from_dict(data, source)
     except FfrInputError as exc:

@@ -46,6 +46,7 @@ import numpy as np
 
 from sim_plant.arena import read_toml
 from sim_plant.errors import FfrInputError
+from sim_plant.reality import Reality, reality_from_table, reality_to_table
 
 DEFAULT_PROFILES = Path(__file__).resolve().parent.parent / "data" / "noise_profiles.toml"
 
@@ -127,6 +128,9 @@ class NoiseProfile:
     flame: AnalogNoise = field(default_factory=AnalogNoise)
     line: LineNoise = field(default_factory=LineNoise)
     encoder: EncoderNoise = field(default_factory=EncoderNoise)
+    # plant truth and the team's calibration drawn apart (sim_plant/reality.py); not a sensor
+    # noise: ``enabled`` below does not count it
+    reality: Reality = field(default_factory=Reality)
     description: str = field(default="", compare=False)
     source: str = field(default="built-in", compare=False)
 
@@ -201,9 +205,11 @@ def _profile(src: str, name: str, table: Any) -> NoiseProfile:
             kwargs[key] = v
         elif key in _GROUPS:
             kwargs[key] = _group(src, f"{name}.{key}", _GROUPS[key], v)
+        elif key == "reality":
+            kwargs[key] = reality_from_table(src, f"{name}.{key}", v)
         else:
             raise FfrInputError(src, f"{name}.{key}", v,
-                                f"unknown field (known: description, {', '.join(_GROUPS)})")
+                                f"unknown field (known: description, {', '.join(_GROUPS)}, reality)")
     return NoiseProfile(name=name, source=src, **kwargs)
 
 
@@ -221,6 +227,9 @@ def profile_to_table(prof: NoiseProfile) -> dict[str, Any]:
              if getattr(g, f.name) != f.default}
         if d:
             out[gname] = d
+    r = reality_to_table(prof.reality)
+    if r:
+        out["reality"] = r
     return out
 
 

@@ -35,6 +35,9 @@ CASES: dict[str, dict[str, Any]] = {
     "room4-stop-on-contact": {"room": 4, "noise": "harsh", "seed": 1, "stop_on_contact": True},
     "room2-find-limit": {"room": 2, "timing": Timing(find_limit_s=20.0)},
     "room1-return-limit": {"room": 1, "noise": "typical", "timing": Timing(return_limit_s=3.0)},
+    "room2-realistic": {"room": 2, "noise": "realistic", "seed": 4},
+    "room4-realistic-10ms-plant": {"room": 4, "noise": "realistic", "seed": 13,
+                                   "timing": Timing(plant_dt_ms=10.0)},
     "room3-10ms-plant-start-delay": {"room": 3, "noise": "datasheet", "seed": 2,
                                      "timing": Timing(plant_dt_ms=10.0, start_delay_ms=500)},
 }
