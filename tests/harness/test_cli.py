@@ -130,3 +130,13 @@ def test_python_dash_m_and_console_script_agree() -> None:
     bad = subprocess.run([sys.executable, "-m", "harness", "run", "--room", "x"],
                          capture_output=True, text=True, cwd=REPO, timeout=120)
     assert bad.returncode == 2 and "Traceback" not in bad.stderr and bad.stderr.count("\n") == 1
+
+
+def test_a_reader_that_leaves_early_gets_no_traceback() -> None:
+    # `ffr table1 | head -1`: the pipe closes before ffr prints
+    p = subprocess.Popen([sys.executable, "-m", "harness", "run", "--room", "1"], cwd=REPO,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert p.stdout is not None and p.stderr is not None
+    p.stdout.close()
+    err = p.stderr.read().decode()
+    assert p.wait(timeout=120) == 141 and err == ""
