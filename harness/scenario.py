@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from harness.events import Event, parse_events
 from sim_plant.arena import DEFAULT_ARENA, Arena, _Reader, load_arena, read_toml
 from sim_plant.errors import FfrInputError
@@ -23,7 +25,20 @@ from sim_plant.sensors import NoiseProfile, load_noise_profile
 from sim_plant.sensors.noise import profile_from_table, profile_to_table
 
 _TOP_KEYS = {"name", "seed", "noise", "arena", "robot", "candle", "start", "timing", "firmware",
-             "robot_overrides", "events", "stop_on_contact"}
+             "robot_overrides", "events", "stop_on_contact", "ir_source"}
+
+
+@dataclass(frozen=True)
+class IrSource:
+    """An infrared source besides the flame (a sunlit window, a lamp): a point the flame
+    sensors see like a flame of ``strength`` times the paper's eq. (9) flame, not flickering,
+    not reflected, never going out (docs/sensors.md)."""
+
+    x: float
+    y: float
+    height: float
+    strength: float
+    name: str = "ir_source"
 
 
 @dataclass
@@ -52,6 +67,12 @@ class Scenario:
     stop_on_contact: bool = False
     events: list[Event] = field(default_factory=list)
     robot_file: str | None = None  # the robot file before robot_overrides (None: the default)
+    ir_sources: tuple[IrSource, ...] = ()  # scenario [[ir_source]] objects
+
+    def ir_source_array(self) -> np.ndarray:
+        """(n, 4) x, y, z, strength: what ``SensorSuite`` takes."""
+        return np.array([[q.x, q.y, q.height, q.strength] for q in self.ir_sources],
+                        dtype=np.float64).reshape(len(self.ir_sources), 4)
 
 
 def default_start(arena: Arena) -> tuple[float, float, float]:
@@ -65,7 +86,8 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
                   firmware: dict[str, Any] | None = None, robot_overrides: dict[str, Any] | None = None,
                   start: tuple[float, float, float] | None = None, timing: Timing | None = None,
                   name: str | None = None, source: str = "command line",
-                  stop_on_contact: bool = False, events: list[Event] | None = None) -> Scenario:
+                  stop_on_contact: bool = False, events: list[Event] | None = None,
+                  ir_sources: tuple[IrSource, ...] = ()) -> Scenario:
     arena = arena or load_arena()
     robot = robot or load_robot()
     robot_file = None if robot.source == str(DEFAULT_ROBOT) else robot.source
@@ -85,8 +107,23 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
         room=room_id, start=start or default_start(arena), seed=seed, noise=prof,
         firmware=dict(firmware or {}), robot_overrides=dict(robot_overrides or {}),
         timing=timing or Timing(), stop_on_contact=stop_on_contact, events=list(events or []),
-        robot_file=robot_file,
+        robot_file=robot_file, ir_sources=tuple(ir_sources),
     )
+
+
+def _ir_sources(r: _Reader, arena: Arena) -> tuple[IrSource, ...]:
+    out = []
+    for i, t in enumerate(r.tables("ir_source")):
+        name = f"ir_source[{i}]"
+        _known_only(t, name, {"name", "position", "height", "strength"})
+        x, y = t.point("position")
+        w, h = arena.size
+        if not (0.0 <= x <= w and 0.0 <= y <= h):
+            raise FfrInputError(r.source, f"{name}.position", [x, y],
+                                f"must be inside the arena (0..{w:g}, 0..{h:g} m)")
+        out.append(IrSource(x, y, t.number("height", arena.flame_height, lo=0.0, hi=5.0),
+                            t.number("strength", lo=0.0, hi=1000.0), t.string("name", "ir_source")))
+    return tuple(out)
 
 
 def _timing(r: _Reader) -> Timing:
@@ -181,11 +218,12 @@ def load_scenario(path: str | Path, *, seed: int | None = None) -> Scenario:
     if not isinstance(stop, bool):
         raise FfrInputError(src, "stop_on_contact", stop, "must be true or false")
     events = parse_events(data.get("events", []), src)
+    sources = _ir_sources(r, arena) if "ir_source" in data else ()
     name = r.string("name", p.stem)
     return make_scenario(arena=arena, robot=robot, room=room, candle=candle,
                          seed=file_seed if seed is None else seed, noise=noise, firmware=fw,
                          robot_overrides=ro, start=start, timing=timing, name=name, source=src,
-                         stop_on_contact=stop, events=events)
+                         stop_on_contact=stop, events=events, ir_sources=sources)
 
 
 # -- writing -------------------------------------------------------------------
@@ -259,6 +297,10 @@ def scenario_to_toml(scn: Scenario, comment: str = "") -> str:
         _toml_table(lines, "firmware", dict(scn.firmware))
     if scn.robot_overrides:
         _toml_table(lines, "robot_overrides", dict(scn.robot_overrides))
+    for q in scn.ir_sources:
+        lines += ["", "[[ir_source]]", f"name = {_toml_value(q.name)}",
+                  f"position = {_toml_value([q.x, q.y])}", f"height = {_toml_value(q.height)}",
+                  f"strength = {_toml_value(q.strength)}"]
     for ev in scn.events:
         lines += ["", "[[events]]"] + [f"{k} = {_toml_value(v)}" for k, v in ev.to_table().items()]
     return "\n".join(lines) + "\n"

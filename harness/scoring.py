@@ -4,7 +4,9 @@ Outcomes (the JSON contract): "home" = flame out and the robot stopped inside
 the home circle; "extinguished" = flame out, robot not (yet) home;
 "timeout" = flame still burning at the find limit; "collision" = the run was
 ended by a wall contact (scenario ``stop_on_contact``) or the robot stayed
-pushed against a wall; "error" = the firmware gave up or the link failed.
+pushed against a wall, or by knocking the candle over (then ``detail`` is
+"knocked the candle over" and ``candle_knocked`` is true; docs/sensors.md);
+"error" = the firmware gave up or the link failed.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ class ScoringRules:
     room_factor: dict[int, float]
     return_trip_factor: float
     wall_contact_penalty: float
+    candle_knocked_penalty: float = 0.0
 
     @classmethod
     def load(cls, path: Path = SCORING_FILE) -> ScoringRules:
@@ -33,6 +36,7 @@ class ScoringRules:
             room_factor={int(k): float(v) for k, v in data["room_factor"].items()},
             return_trip_factor=float(data["mode_factor"]["return_trip"]),
             wall_contact_penalty=float(data["penalty"]["wall_contact"]),
+            candle_knocked_penalty=float(data["penalty"].get("candle_knocked", 0.0)),
         )
 
 
@@ -56,6 +60,7 @@ class MissionResult:
     final_pose: tuple[float, float, float] = (0.0, 0.0, 0.0)
     # what crossed the link during this mission (LinkCounters.as_dict(); docs/protocol.md)
     link_counters: dict[str, int] = field(default_factory=dict)
+    candle_knocked: bool = False  # the run ended because the robot knocked the candle over
     extra: dict[str, Any] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
@@ -78,6 +83,7 @@ class MissionResult:
             "scenario": self.scenario,
             "link": self.link,
             "link_counters": dict(self.link_counters),
+            "candle_knocked": bool(self.candle_knocked),
             "sim_time_s": r(self.sim_time_s),
             "final_pose": [round(self.final_pose[0], 4), round(self.final_pose[1], 4),
                            round(math.degrees(self.final_pose[2]), 2)],
@@ -87,9 +93,11 @@ class MissionResult:
 
 
 def contest_score(rules: ScoringRules, outcome: str, time_to_extinguish_s: float | None,
-                  rooms_searched: int, wall_contacts: int) -> float:
+                  rooms_searched: int, wall_contacts: int, candle_knocked: bool = False) -> float:
+    """Lower is better; knocking the candle over adds its penalty to whatever the run scored."""
+    extra = rules.candle_knocked_penalty if candle_knocked else 0.0
     if outcome not in ("home", "extinguished") or time_to_extinguish_s is None:
-        return rules.incomplete_score
+        return rules.incomplete_score + extra
     rf = rules.room_factor.get(max(1, rooms_searched), min(rules.room_factor.values()))
     mode = rules.return_trip_factor if outcome == "home" else 1.0
-    return time_to_extinguish_s * rf * mode + rules.wall_contact_penalty * wall_contacts
+    return time_to_extinguish_s * rf * mode + rules.wall_contact_penalty * wall_contacts + extra

@@ -90,6 +90,9 @@ class Arena:
     walls: list[Wall]
     rooms: list[Room]
     hallways: list[Hallway]
+    # the candle's base as an obstacle (issue 12): a disc the rangers see and the robot
+    # knocks over; 0 = not an obstacle (docs/sensors.md)
+    candle_base_radius: float = 0.0
     # Derived arrays for the compiled kernels.
     wall_polys: np.ndarray = field(init=False, repr=False)
     wall_edges: np.ndarray = field(init=False, repr=False)
@@ -329,6 +332,7 @@ def load_arena(path: str | Path | None = None) -> Arena:
         candle_min_depth=a.number("candle_min_depth", 0.33, lo=0.0),
         candle_radius=a.number("candle_radius", 0.0125, positive=True),
         flame_height=a.number("flame_height", 0.175, positive=True),
+        candle_base_radius=a.number("candle_base_radius", 0.0, lo=0.0, hi=0.15),
         home_center=home.point("center"), home_radius=home.number("radius", positive=True),
         walls=walls, rooms=sorted(rooms, key=lambda rm: rm.id), hallways=hallways,
     )
