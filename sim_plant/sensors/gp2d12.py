@@ -189,6 +189,44 @@ def ray_circle(px: float, py: float, dx: float, dy: float, cx: float, cy: float,
     return t if t < max_range else max_range
 
 
+_WEDGE_MARGIN = 1e-9  # m^2 (a cross product): an edge this close to the beam's edge is kept
+
+
+@nb.njit(cache=True)
+def _edges_in_wedge(px: float, py: float, dx0: float, dy0: float, half: float,
+                    edges: np.ndarray) -> np.ndarray:
+    """The wall edges a ray within +-``half`` (< 90 degrees) of the unit aim (dx0, dy0) from
+    (px, py) can hit: an edge is left out only when both its ends are behind the ranger, or
+    both beyond the same side of the beam (the beam is convex, so the edge cannot cross it).
+    Casting the beam's rays against these only gives the same distances, for less work."""
+    ch = math.cos(half)
+    sh = math.sin(half)
+    lx = dx0 * ch - dy0 * sh  # the beam's left (counter-clockwise) boundary
+    ly = dx0 * sh + dy0 * ch
+    rx = dx0 * ch + dy0 * sh  # and its right one
+    ry = -dx0 * sh + dy0 * ch
+    keep = np.empty(edges.shape[0], dtype=np.int64)
+    n = 0
+    for i in range(edges.shape[0]):
+        ax = edges[i, 0] - px
+        ay = edges[i, 1] - py
+        bx = edges[i, 2] - px
+        by = edges[i, 3] - py
+        if ax * dx0 + ay * dy0 < -_WEDGE_MARGIN and bx * dx0 + by * dy0 < -_WEDGE_MARGIN:
+            continue
+        if lx * ay - ly * ax > _WEDGE_MARGIN and lx * by - ly * bx > _WEDGE_MARGIN:
+            continue
+        if rx * ay - ry * ax < -_WEDGE_MARGIN and rx * by - ry * bx < -_WEDGE_MARGIN:
+            continue
+        keep[n] = i
+        n += 1
+    out = np.empty((n, 4))
+    for j in range(n):
+        for c in range(4):
+            out[j, c] = edges[keep[j], c]
+    return out
+
+
 @nb.njit(cache=True)
 def beam_distance(px: float, py: float, dx0: float, dy0: float, half: float, n_rays: int,
                   edges: np.ndarray,
@@ -210,6 +248,8 @@ def beam_distance(px: float, py: float, dx0: float, dy0: float, half: float, n_r
             return 0.0
     if half <= 0.0 or n_rays <= 1:
         n_rays = 1
+    else:
+        edges = _edges_in_wedge(px, py, dx0, dy0, half, edges)
     num = 0.0
     den = 0.0
     for j in range(n_rays):

@@ -4,8 +4,12 @@ per-part timing; the flame's strength, flicker, wall reflections and afterglow.
 Both groups live in a noise profile (``[PROFILE.ranger]``,
 ``[PROFILE.flame_world]`` in ``sim_plant/data/noise_profiles.toml``, in a user
 profile file or in a scenario's inline ``[noise]``), beside the noise groups.
-Every field defaults to today's ideal model, so a profile that does not name
-them changes nothing and draws nothing. Values and sources: docs/sensors.md.
+The GP2D12's finite beam (2 degrees each side, 5 rays) is on by default; its
+latency is off by default (with the beam and the ``datasheet`` noise the
+firmware fails 15 of the property test's 80 missions: docs/sensors.md);
+everything that draws a random number, and the flame models, are off unless
+a profile switches them on (the ``realistic`` profile does), so a profile
+that does not name them draws nothing. Values and sources: docs/sensors.md.
 
 Random draws (only when a field asks for one), all from the scenario's one
 Generator, once, when the ``SensorSuite`` is built, after the parts' unit
@@ -21,13 +25,16 @@ from dataclasses import dataclass
 import numpy as np
 
 GP2D12_PERIOD_SPREAD = 0.0096  # s, the datasheet's 38.3 +- 9.6 ms
+# chosen: the beam "a few cm wide at long range" (no published angle): 2 degrees each side
+# is a 5.6 cm spot at 80 cm (docs/sensors.md)
+BEAM_HALF_ANGLE_DEG = 2.0
 
 
 @dataclass(frozen=True)
 class RangerModel:
     """GP2D12 beam and timing.
 
-    ``beam_half_angle_deg``: half-width of the beam (0 = one ray, the old model);
+    ``beam_half_angle_deg``: half-width of the beam (0 = one ray, the pre-issue-12 model);
     ``beam_rays`` rays spread evenly over it, combined as the part's position
     sensitive detector does: the intensity-weighted mean of 1/d (docs/sensors.md).
     ``latency``: the voltage of a measurement appears only at the end of its
@@ -38,7 +45,7 @@ class RangerModel:
     [0, its period) instead of the fixed stagger.
     """
 
-    beam_half_angle_deg: float = 0.0
+    beam_half_angle_deg: float = BEAM_HALF_ANGLE_DEG
     beam_rays: int = 5
     latency: bool = False
     period_spread: float = 0.0

@@ -154,6 +154,7 @@ def test_latency_shows_each_measurement_one_period_late() -> None:
     per = 0.04  # with 10 ms ticks: measurements at ticks 0, 4, 8, 12, ...
     from sim_plant.sensors.gp2d12 import Gp2d12Model
     plain = SensorSuite(arena, load_robot(), Candle(*arena.room(1).default_candle, load_robot(), arena),
+                        NoiseProfile(ranger=RangerModel(latency=False)),
                         ir_model=Gp2d12Model(period=per, stagger=False))
     late = SensorSuite(arena, load_robot(), Candle(*arena.room(1).default_candle, load_robot(), arena),
                        NoiseProfile(ranger=RangerModel(latency=True)),
@@ -325,3 +326,54 @@ def test_ir_source_adds_its_own_light_lit_or_not() -> None:
     assert _flame_reading(s0, 0.1, (x, y, th))[0] == 0.0
     assert _flame_reading(s1, 0.1, (x, y, th))[0] == pytest.approx(want, rel=1e-9)
 
+
+
+# -- configuration -----------------------------------------------------------------
+
+def test_bundled_profiles_carry_the_models() -> None:
+    from sim_plant.sensors import load_noise_profile
+    real = load_noise_profile("realistic")
+    assert real.ranger == RangerModel(2.0, 5, True, 0.0096, True)
+    assert real.flame_world == FlameWorld(0.6, 1.4, 0.15, 1.5, 0.3, 0.5)
+    assert load_noise_profile("single_ray").ranger.beam_half_angle_deg == 0.0
+    assert load_noise_profile("none").ranger == RangerModel()  # the default: a 2-degree beam
+    assert RangerModel().beam_half_angle_deg == 2.0 and not RangerModel().latency
+
+
+@pytest.mark.parametrize("group,key,value,msg", [
+    ("ranger", "beam_half_angle_deg", 45.0, "must be in"),
+    ("ranger", "beam_rays", 2.5, "whole number"),
+    ("ranger", "latency", 1, "true or false"),
+    ("ranger", "period_spread", -0.001, "must be in"),
+    ("ranger", "beam_width", 2.0, "unknown field"),
+    ("flame_world", "wall_reflectance", 1.5, "must be in"),
+    ("flame_world", "strength_max", 0.5, "must be >= strength_min"),
+    ("flame_world", "afterglow_s", "long", "finite number"),
+])
+def test_bad_model_values_are_refused_naming_the_field(group: str, key: str, value: object,
+                                                       msg: str) -> None:
+    from sim_plant.errors import FfrInputError
+    from sim_plant.sensors.noise import profile_from_table
+    with pytest.raises(FfrInputError, match=msg) as e:
+        profile_from_table({group: {key: value}}, "x.toml")
+    assert f"{group}.{key}" in str(e.value) and "x.toml" in str(e.value)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_beam_edge_filter_changes_no_distance(arena: Arena, seed: int) -> None:
+    """The beam casts its rays only against the edges inside its wedge: every ray's distance
+    must be exactly the one against all edges (random poses and aims over the whole arena)."""
+    from sim_plant.geometry import ray_cast
+    from sim_plant.sensors.gp2d12 import _edges_in_wedge
+    rng = np.random.default_rng(seed)
+    e = arena.wall_edges
+    for _ in range(400):
+        px, py = rng.uniform(0.03, 2.41, 2)
+        a = rng.uniform(-math.pi, math.pi)
+        h = math.radians(rng.uniform(0.1, 20.0))
+        sub = _edges_in_wedge(px, py, math.cos(a), math.sin(a), h, e)
+        assert sub.shape[0] <= e.shape[0]
+        for o in np.linspace(-h, h, 7):
+            dx, dy = math.cos(a) * math.cos(o) - math.sin(a) * math.sin(o), \
+                math.cos(a) * math.sin(o) + math.sin(a) * math.cos(o)
+            assert ray_cast(px, py, dx, dy, sub, 4.0) == ray_cast(px, py, dx, dy, e, 4.0)
