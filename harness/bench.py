@@ -19,6 +19,7 @@ every number is the best of several runs.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import subprocess
 import sys
@@ -35,6 +36,7 @@ from harness.tick import _call_step
 from sim_plant.drivetrain import build_params, run_free
 from sim_plant.plant import _advance
 from sim_plant.robot import RobotParams
+from sim_plant.sensors import NoiseProfile, load_noise_profile
 from sim_plant.sensors.suite import _sample_kernel
 
 REPO = Path(__file__).resolve().parents[1]
@@ -76,11 +78,12 @@ def _goal(label: str, value: str, met: bool, goal: str) -> None:
 def _sensors_loop(tf: np.ndarray, phi: np.ndarray, lit: np.ndarray, hw: np.ndarray,
                   ir_cfg: np.ndarray, ir_state: np.ndarray, cfg: np.ndarray, st: np.ndarray,
                   edges: np.ndarray, wall_polys: np.ndarray, doors: np.ndarray, npar: np.ndarray,
-                  normals: np.ndarray, uniforms: np.ndarray, npos: np.ndarray) -> None:
+                  normals: np.ndarray, uniforms: np.ndarray, npos: np.ndarray,
+                  srcs: np.ndarray) -> None:
     for k in range(tf.shape[0]):
         if _sample_kernel(tf[k, 0], tf[k, 1], tf[k, 2], tf[k, 3], phi[k, 0], phi[k, 1], lit[k],
                           hw, ir_cfg, ir_state, cfg, st, edges, wall_polys, doors, npar,
-                          normals, uniforms, npos):
+                          normals, uniforms, npos, srcs):
             npos[0] = 0  # reuse the block: the cost is the same, the numbers need not be
             npos[1] = 0
 
@@ -131,10 +134,23 @@ def bench_parts(repeat: int) -> float:
     ext = res.time_to_extinguish_s if res.time_to_extinguish_s is not None else np.inf
     lit = tr.f[:, 0] < ext
 
-    def sensors() -> None:
-        candle = Candle(*scn.candle, scn.robot, scn.arena)
-        s = SensorSuite(scn.arena, scn.robot, candle, scn.noise, np.random.default_rng(1))
-        _sensors_loop(tr.f, phi, lit, new_output(), *s.kernel_args())
+    def sensors_with(noise: NoiseProfile, sources: np.ndarray | None = None) -> Callable[[], None]:
+        def run() -> None:
+            candle = Candle(*scn.candle, scn.robot, scn.arena)
+            s = SensorSuite(scn.arena, scn.robot, candle, noise, np.random.default_rng(1),
+                            ir_sources=sources)
+            _sensors_loop(tr.f, phi, lit, new_output(), *s.kernel_args())
+        return run
+
+    sensors = sensors_with(scn.noise)
+    # the same noise with the pre-issue-12 single ray, and with every sensor model of the
+    # realistic profile (beam, latency, per-part timing; flame strength, flicker, wall
+    # reflections, afterglow) plus one lamp (docs/sensors.md)
+    real = load_noise_profile("realistic")
+    single = dataclasses.replace(scn.noise, ranger=load_noise_profile("single_ray").ranger)
+    rich = dataclasses.replace(scn.noise, ranger=real.ranger, flame_world=real.flame_world)
+    sensors_single = sensors_with(single)
+    sensors_rich = sensors_with(rich, np.array([[2.2, 0.5, 0.3, 1.5]]))
 
     def plant_run() -> None:
         p = Plant(scn.arena, scn.robot, *scn.start, plant_dt=tm.plant_dt_ms / 1000.0)
@@ -197,13 +213,15 @@ def bench_parts(repeat: int) -> float:
         for k in range(n):
             step(st, base + k * size, o)
 
-    for fn in (sensors, plant_run, plant_real, drive_real, firmware):
+    for fn in (sensors, sensors_single, sensors_rich, plant_run, plant_real, drive_real, firmware):
         fn()  # compile / load
     print(f"per tick, inside compiled code, replaying a room 4 mission with typical noise "
           f"({n} ticks, best of {repeat}):")
     rows = (("sensors (5 rangers, 2 flame, line, encoders)", sensors),
             (f"plant ({n_sub} x {tm.plant_dt_ms:g} ms steps, walls, contacts)", plant_run),
-            ("firmware ffr_step (the 'firmware alone' floor)", firmware))
+            ("firmware ffr_step (the 'firmware alone' floor)", firmware),
+            ("sensors, rangers as one ray (before issue 12)", sensors_single),
+            ("sensors, every realistic sensor model and a lamp", sensors_rich))
     costs = {}
     for name, fn in rows:
         costs[name] = _best(fn, repeat) / n * 1e6

@@ -35,6 +35,7 @@ from harness.firmware_config import build_config
 from harness.scenario import Scenario
 from harness.scoring import MissionResult, ScoringRules, contest_score
 from harness.tick import (
+    END_CANDLE,
     END_CONTACT,
     END_DONE,
     END_FAILED,
@@ -57,6 +58,9 @@ assert (_IN["t_ms"], _IN["seq"], _IN["enc"], _IN["ir_mv"], _IN["flame"], _IN["li
     0, 4, 8, 16, 26, 30, 31), "inputs layout changed: update _pack"
 assert (_OUT["pwm"], _OUT["fan"], _OUT["state"], _OUT["flags"], _OUT["step"]) == (4, 8, 9, 13, 14), \
     "outputs layout changed: update _record"
+
+# The detail of a run ended by knocking the candle over (outcome "collision", docs/sensors.md).
+CANDLE_KNOCKED = "knocked the candle over"
 
 # Trace columns.
 F_T, F_X, F_Y, F_TH = range(4)
@@ -134,7 +138,8 @@ class Mission:
         plant = Plant(scn.arena, robot, *scn.start, plant_dt=tm.plant_dt_ms / 1000.0,
                       source=scn.source)
         candle = Candle(scn.candle[0], scn.candle[1], robot, scn.arena)
-        sensors = SensorSuite(scn.arena, robot, candle, scn.noise, rng)
+        sensors = SensorSuite(scn.arena, robot, candle, scn.noise, rng,
+                              ir_sources=scn.ir_source_array())
         cfg = build_config(robot, scn.firmware, scn.source)
         self.config = cfg
         if not compiled:
@@ -179,6 +184,8 @@ class Mission:
             elif end == END_FAILED:
                 outcome = "failed"
                 detail = "firmware: " + FAIL_NAMES.get(int(out_bytes[15]), f"code {int(out_bytes[15])}")
+            elif end == END_CANDLE:
+                outcome, detail = "collision", CANDLE_KNOCKED
             elif end == END_CONTACT:
                 outcome, detail = "collision", "wall contact (stop_on_contact)"
             elif end == END_STUCK:
@@ -220,9 +227,10 @@ class Mission:
             final_pose=(plant.x, plant.y, plant.theta),
             link_counters=(link.link_counters() - counters0).as_dict(),
             start_pose=scn.start, arena_jitter=scn.arena_jitter, modes=scn.modes,
-            furniture=[p.as_list() for p in scn.furniture],
+            furniture=[p.as_list() for p in scn.furniture], candle_knocked=candle.knocked,
         )
-        result.score = contest_score(self.rules, outcome, ext, rooms_searched, plant.contacts, scn.modes)
+        result.score = contest_score(self.rules, outcome, ext, rooms_searched, plant.contacts, scn.modes,
+                                     candle.knocked)
         n = k if record else 0
         return result, Trace(tf[:n].copy(), ti[:n].copy())
 
@@ -284,6 +292,9 @@ class Mission:
             plant.apply(pwm_l, pwm_r, fan)
             plant.integrate(period)
             candle.update(t + period, period, fan, plant.x, plant.y, plant.theta)
+            if candle.knocked:
+                outcome, detail = "collision", CANDLE_KNOCKED
+                break
             if scn.stop_on_contact and plant.contacts > 0:
                 outcome, detail = "collision", "wall contact (stop_on_contact)"
                 break
@@ -314,7 +325,8 @@ def warm_up(scn: Scenario, record: bool) -> None:
     candle = Candle(scn.candle[0], scn.candle[1], scn.robot, scn.arena)
     rng = np.random.default_rng(0)
     hw = new_output()
-    SensorSuite(scn.arena, scn.robot, candle, scn.noise, rng).sample(
+    SensorSuite(scn.arena, scn.robot, candle, scn.noise, rng,
+                ir_sources=scn.ir_source_array()).sample(
         0.0, plant.x, plant.y, plant.theta, plant.phi_l, plant.phi_r, hw)
     if scn.events:
         EventRunner(scn.events, rng).apply(0.0, hw)

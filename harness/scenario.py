@@ -15,6 +15,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from harness.events import Event, parse_events
 from harness.start_pose import (
     FURNITURE_STREAM,
@@ -35,12 +37,24 @@ from sim_plant.sensors import NoiseProfile, load_noise_profile
 from sim_plant.sensors.noise import profile_from_table, profile_to_table
 
 _TOP_KEYS = {"name", "seed", "noise", "arena", "arena_jitter", "robot", "candle", "start", "timing", "firmware",
-             "robot_overrides", "events", "stop_on_contact", "furniture"}
+             "robot_overrides", "events", "stop_on_contact", "furniture", "ir_source"}
 
 # a pose (x, y m, heading rad), "random" (in the home circle), "hallway" (random in a hallway: the
 # arbitrary start mode), or None (the default)
 StartSpec = tuple[float, float, float] | str | None
 FurnitureSpec = int | list[Piece] | None  # N random pieces, the pieces, or none
+
+@dataclass(frozen=True)
+class IrSource:
+    """An infrared source besides the flame (a sunlit window, a lamp): a point the flame
+    sensors see like a flame of ``strength`` times the paper's eq. (9) flame, not flickering,
+    not reflected, never going out (docs/sensors.md)."""
+
+    x: float
+    y: float
+    height: float
+    strength: float
+    name: str = "ir_source"
 
 
 @dataclass
@@ -85,6 +99,12 @@ class Scenario:
     def requested_candle(self) -> tuple[float, float]:
         """The candle position as asked for (in the unjittered arena): what a saved scenario records."""
         return self.candle_nominal if self.candle_nominal is not None else self.candle
+    ir_sources: tuple[IrSource, ...] = ()  # scenario [[ir_source]] objects
+
+    def ir_source_array(self) -> np.ndarray:
+        """(n, 4) x, y, z, strength: what ``SensorSuite`` takes."""
+        return np.array([[q.x, q.y, q.height, q.strength] for q in self.ir_sources],
+                        dtype=np.float64).reshape(len(self.ir_sources), 4)
 
 
 def default_start(arena: Arena) -> tuple[float, float, float]:
@@ -101,7 +121,7 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
                   name: str | None = None, source: str = "command line",
                   stop_on_contact: bool = False, events: list[Event] | None = None,
                   arena_jitter: float = 0.0, furniture: FurnitureSpec = None,
-                  start_area: str = "home") -> Scenario:
+                  start_area: str = "home", ir_sources: tuple[IrSource, ...] = ()) -> Scenario:
     """A mission. ``start``: a pose (checked: centre in the home circle, footprint clear of the walls),
     ``"random"`` (drawn from the seed's start stream) or None (the home circle's centre, facing the
     arena file's start heading).
@@ -164,7 +184,23 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
         candle_nominal=nominal if arena_jitter > 0.0 else None, start_random=start in ("random", "hallway"),
         start_area=start_area, furniture=pieces,
         furniture_random=furniture if isinstance(furniture, int) else 0,
+        ir_sources=tuple(ir_sources),
     )
+
+
+def _ir_sources(r: _Reader, arena: Arena) -> tuple[IrSource, ...]:
+    out = []
+    for i, t in enumerate(r.tables("ir_source")):
+        name = f"ir_source[{i}]"
+        _known_only(t, name, {"name", "position", "height", "strength"})
+        x, y = t.point("position")
+        w, h = arena.size
+        if not (0.0 <= x <= w and 0.0 <= y <= h):
+            raise FfrInputError(r.source, f"{name}.position", [x, y],
+                                f"must be inside the arena (0..{w:g}, 0..{h:g} m)")
+        out.append(IrSource(x, y, t.number("height", arena.flame_height, lo=0.0, hi=5.0),
+                            t.number("strength", lo=0.0, hi=1000.0), t.string("name", "ir_source")))
+    return tuple(out)
 
 
 def _timing(r: _Reader) -> Timing:
@@ -287,12 +323,14 @@ def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec
         raise FfrInputError(src, "stop_on_contact", stop, "must be true or false")
     events = parse_events(data.get("events", []), src)
     file_furniture = _furniture(data.get("furniture"), src)
+    sources = _ir_sources(r, arena) if "ir_source" in data else ()
     name = r.string("name", p.stem)
     return make_scenario(arena=arena, robot=robot, room=room, candle=candle,
                          seed=file_seed if seed is None else seed, noise=noise, firmware=fw,
                          robot_overrides=ro, start=file_start if start is None else start, timing=timing,
                          name=name, source=src, stop_on_contact=stop, events=events, arena_jitter=jitter,
-                         furniture=file_furniture if furniture is None else furniture, start_area=start_area)
+                         furniture=file_furniture if furniture is None else furniture, start_area=start_area,
+                         ir_sources=sources)
 
 
 def _furniture(value: Any, src: str) -> FurnitureSpec:
@@ -390,6 +428,10 @@ def scenario_to_toml(scn: Scenario, comment: str = "") -> str:
         _toml_table(lines, "firmware", dict(scn.firmware))
     if scn.robot_overrides:
         _toml_table(lines, "robot_overrides", dict(scn.robot_overrides))
+    for q in scn.ir_sources:
+        lines += ["", "[[ir_source]]", f"name = {_toml_value(q.name)}",
+                  f"position = {_toml_value([q.x, q.y])}", f"height = {_toml_value(q.height)}",
+                  f"strength = {_toml_value(q.strength)}"]
     for ev in scn.events:
         lines += ["", "[[events]]"] + [f"{k} = {_toml_value(v)}" for k, v in ev.to_table().items()]
     if scn.furniture_random:

@@ -4,7 +4,9 @@ Outcomes (the JSON contract): "home" = flame out and the robot stopped inside
 the home circle; "extinguished" = flame out, robot not (yet) home;
 "timeout" = flame still burning at the find limit; "collision" = the run was
 ended by a wall contact (scenario ``stop_on_contact``) or the robot stayed
-pushed against a wall; "error" = the firmware gave up or the link failed.
+pushed against a wall, or by knocking the candle over (then ``detail`` is
+"knocked the candle over" and ``candle_knocked`` is true; docs/sensors.md);
+"error" = the firmware gave up or the link failed.
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ class ScoringRules:
     wall_contact_penalty: float
     # the optional modes' factors besides the return trip (arbitrary_start, furniture)
     mode_factors: dict[str, float] = field(default_factory=dict)
+    candle_knocked_penalty: float = 0.0
 
     @classmethod
     def load(cls, path: Path = SCORING_FILE) -> ScoringRules:
@@ -37,6 +40,7 @@ class ScoringRules:
             return_trip_factor=float(data["mode_factor"]["return_trip"]),
             wall_contact_penalty=float(data["penalty"]["wall_contact"]),
             mode_factors={k: float(v) for k, v in data["mode_factor"].items() if k != "return_trip"},
+            candle_knocked_penalty=float(data["penalty"].get("candle_knocked", 0.0)),
         )
 
 
@@ -64,6 +68,7 @@ class MissionResult:
     arena_jitter: float = 0.0  # m, the arena's walls moved by up to this (drawn from the seed)
     modes: list[str] = field(default_factory=list)  # optional modes run in (arbitrary_start, furniture)
     furniture: list[list[float]] = field(default_factory=list)  # each piece: x, y, width, depth (m), heading (deg)
+    candle_knocked: bool = False  # the run ended because the robot knocked the candle over
     extra: dict[str, Any] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
@@ -86,6 +91,7 @@ class MissionResult:
             "scenario": self.scenario,
             "link": self.link,
             "link_counters": dict(self.link_counters),
+            "candle_knocked": bool(self.candle_knocked),
             "sim_time_s": r(self.sim_time_s),
             "final_pose": [round(self.final_pose[0], 4), round(self.final_pose[1], 4),
                            round(math.degrees(self.final_pose[2]), 2)],
@@ -100,11 +106,14 @@ class MissionResult:
 
 
 def contest_score(rules: ScoringRules, outcome: str, time_to_extinguish_s: float | None,
-                  rooms_searched: int, wall_contacts: int, modes: Sequence[str] = ()) -> float:
+                  rooms_searched: int, wall_contacts: int, modes: Sequence[str] = (),
+                  candle_knocked: bool = False) -> float:
+    """Lower is better; knocking the candle over adds its penalty to whatever the run scored."""
+    extra = rules.candle_knocked_penalty if candle_knocked else 0.0
     if outcome not in ("home", "extinguished") or time_to_extinguish_s is None:
-        return rules.incomplete_score
+        return rules.incomplete_score + extra
     rf = rules.room_factor.get(max(1, rooms_searched), min(rules.room_factor.values()))
     mode = rules.return_trip_factor if outcome == "home" else 1.0
     for m in modes:
         mode *= rules.mode_factors[m]
-    return time_to_extinguish_s * rf * mode + rules.wall_contact_penalty * wall_contacts
+    return time_to_extinguish_s * rf * mode + rules.wall_contact_penalty * wall_contacts + extra

@@ -25,13 +25,14 @@ from numba import types
 from numba.extending import intrinsic
 
 from harness.events import apply_events
-from sim_plant.candle import CS_EXT_AT, CS_LIT, update_kernel
+from sim_plant.candle import CS_EXT_AT, CS_KNOCKED, CS_LIT, update_kernel
 from sim_plant.drivetrain import S_LEFT, S_RIGHT, S_TH, S_X, S_Y
 from sim_plant.plant import S_CONTACTS, S_FAN, S_IN_CONTACT, _advance
 from sim_plant.sensors.suite import _sample_kernel
 
 # Why the kernel stopped (loop.py turns these into outcome and detail).
 END_DONE, END_FAILED, END_CONTACT, END_STUCK, END_FIND_LIMIT, END_RETURN_LIMIT, END_TICKS = range(1, 8)
+END_CANDLE = 8  # the robot knocked the candle over
 
 
 @intrinsic
@@ -94,7 +95,7 @@ def mission_kernel(fn_step: int, st_ptr: int, in_ptr: int, out_ptr: int,
                    ir_cfg: np.ndarray, ir_state: np.ndarray, scfg: np.ndarray, sst: np.ndarray,
                    edges: np.ndarray, wall_polys: np.ndarray, doors: np.ndarray, npar: np.ndarray,
                    normals: np.ndarray, uniforms: np.ndarray, npos: np.ndarray,
-                   rng: np.random.Generator,
+                   srcs: np.ndarray, rng: np.random.Generator,
                    ev: np.ndarray, ev_state: np.ndarray, ev_active: np.ndarray,
                    S: np.ndarray, P: np.ndarray, poly: np.ndarray, walls: np.ndarray,
                    bbox: np.ndarray, n_sub: int,
@@ -112,7 +113,7 @@ def mission_kernel(fn_step: int, st_ptr: int, in_ptr: int, out_ptr: int,
         t = t_ms / 1000.0
         if _sample_kernel(t, S[S_X], S[S_Y], S[S_TH], S[S_LEFT + 2], S[S_RIGHT + 2],
                           cs[CS_LIT] != 0.0, hw, ir_cfg, ir_state, scfg, sst, edges, wall_polys,
-                          doors, npar, normals, uniforms, npos):
+                          doors, npar, normals, uniforms, npos, srcs):
             # NoiseStream.refill: the normals, then the uniforms, from the one Generator
             for i in range(normals.shape[0]):
                 normals[i] = rng.standard_normal()
@@ -140,6 +141,8 @@ def mission_kernel(fn_step: int, st_ptr: int, in_ptr: int, out_ptr: int,
         if n_sub:
             _advance(S, P, poly, walls, bbox, pwm_l, pwm_r, n_sub)
         update_kernel(cs, cp, edges, t + period, period, fan, S[S_X], S[S_Y], S[S_TH])
+        if cs[CS_KNOCKED] != 0.0:
+            return END_CANDLE, k, t
         if stop_on_contact and S[S_CONTACTS] > 0.0:
             return END_CONTACT, k, t
         stuck_s = stuck_s + period if S[S_IN_CONTACT] != 0.0 else 0.0

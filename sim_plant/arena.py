@@ -103,6 +103,9 @@ class Arena:
     home_heading: float = math.pi / 2
     # Tolerance the walls were jittered by (0: the file's arena as drawn; sim_plant/arena_jitter.py).
     jitter: float = 0.0
+    # the candle's base as an obstacle (issue 12): a disc the rangers see and the robot
+    # knocks over; 0 = not an obstacle (docs/sensors.md)
+    candle_base_radius: float = 0.0
     # Derived arrays for the compiled kernels.
     wall_polys: np.ndarray = field(init=False, repr=False)
     wall_edges: np.ndarray = field(init=False, repr=False)
@@ -320,7 +323,7 @@ def load_arena(path: str | Path | None = None) -> Arena:
     _only(root, {"arena", "home", "walls", "rooms", "hallways"})
     a = root.sub("arena")
     _only(a, {"name", "size", "wall_height", "line_width", "candle_circle_radius", "candle_min_depth",
-              "candle_radius", "flame_height", "placement"})
+              "candle_base_radius", "candle_radius", "flame_height", "placement"})
     home = root.sub("home")
     _only(home, {"center", "radius", "heading_deg"})
     size = a.point("size")
@@ -363,6 +366,7 @@ def load_arena(path: str | Path | None = None) -> Arena:
         candle_min_depth=a.number("candle_min_depth", 0.33, lo=0.0),
         candle_radius=a.number("candle_radius", 0.0125, positive=True),
         flame_height=a.number("flame_height", 0.175, positive=True),
+        candle_base_radius=a.number("candle_base_radius", 0.0, lo=0.0, hi=0.15),
         home_center=home.point("center"), home_radius=home.number("radius", positive=True),
         walls=walls, rooms=sorted(rooms, key=lambda rm: rm.id), hallways=hallways,
         placement=placement,

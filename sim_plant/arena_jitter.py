@@ -167,7 +167,7 @@ def apply_warp(arena: Arena, warp: Warp, tol: float) -> Arena:
         candle_min_depth=arena.candle_min_depth, candle_radius=arena.candle_radius,
         flame_height=arena.flame_height, home_center=pt(arena.home_center), home_radius=arena.home_radius,
         walls=walls, rooms=rooms, hallways=halls, placement=arena.placement, jitter=tol,
-        home_heading=arena.home_heading,
+        home_heading=arena.home_heading, candle_base_radius=arena.candle_base_radius,
     )
     return out
 

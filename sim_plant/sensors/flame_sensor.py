@@ -84,3 +84,79 @@ def flame_sensor_fc(x: float, y: float, c: float, s: float, bx: float, by: float
     r = math.sqrt(dx * dx + dy * dy + dz * dz)
     r = max(r, r_min)
     return INTENSITY_COEFF * k / (r * r)
+
+
+@nb.njit(cache=True)
+def point_fc(px: float, py: float, pz: float, aim: float, sx: float, sy: float, sz: float,
+             edges: np.ndarray, half_width: float, r_min: float) -> float:
+    """Eq. (9) light (fc) of a unit point source at (sx, sy, sz) on a sensor at (px, py, pz)
+    aimed at ``aim`` (rad, world frame); 0 when a wall is in between."""
+    dx = sx - px
+    dy = sy - py
+    dz = sz - pz
+    dth = math.atan2(dy, dx) - aim
+    dth = (dth + math.pi) % (2.0 * math.pi) - math.pi
+    k = flame_k(dth, half_width)
+    if k == 0.0:
+        return 0.0
+    if segment_blocked(px, py, sx, sy, edges):
+        return 0.0
+    r = max(math.sqrt(dx * dx + dy * dy + dz * dz), r_min)
+    return INTENSITY_COEFF * k / (r * r)
+
+
+_NUDGE = 1e-7  # m, a reflection point moved this far off its wall face for the visibility tests
+
+
+@nb.njit(cache=True)
+def reflected_fc(px: float, py: float, pz: float, aim: float, sx: float, sy: float, sz: float,
+                 edges: np.ndarray, half_width: float, r_min: float) -> float:
+    """Light (fc) of a unit point source reaching the sensor by one bounce off any wall face,
+    before the walls' reflectance: the image-source construction.
+
+    Each wall face (a polygon edge, outward normal n; the polygons are
+    counter-clockwise) with both sensor and source in front of it mirrors the
+    source to an image behind it. The image shines on the sensor as a source
+    would (eq. 9 with the sensor-to-image distance and direction) when the
+    sensor-to-image line crosses the face itself and neither leg (source to
+    the reflection point, the point to the sensor) is blocked by another wall.
+    Walls are taller than flame and sensors, so the bounce is always on the wall.
+    """
+    total = 0.0
+    for i in range(edges.shape[0]):
+        ax = edges[i, 0]
+        ay = edges[i, 1]
+        ex = edges[i, 2] - ax
+        ey = edges[i, 3] - ay
+        ln = math.sqrt(ex * ex + ey * ey)
+        if ln <= 0.0:
+            continue
+        nx = ey / ln
+        ny = -ex / ln
+        ds = (px - ax) * nx + (py - ay) * ny
+        df = (sx - ax) * nx + (sy - ay) * ny
+        if ds <= 0.0 or df <= 0.0:
+            continue
+        ix = sx - 2.0 * df * nx
+        iy = sy - 2.0 * df * ny
+        u = ds / (ds + df)
+        rx = px + u * (ix - px)
+        ry = py + u * (iy - py)
+        s = ((rx - ax) * ex + (ry - ay) * ey) / (ln * ln)
+        if s < 0.0 or s > 1.0:
+            continue
+        dx = ix - px
+        dy = iy - py
+        dth = math.atan2(dy, dx) - aim
+        dth = (dth + math.pi) % (2.0 * math.pi) - math.pi
+        k = flame_k(dth, half_width)
+        if k == 0.0:
+            continue
+        qx = rx + _NUDGE * nx
+        qy = ry + _NUDGE * ny
+        if segment_blocked(px, py, qx, qy, edges) or segment_blocked(sx, sy, qx, qy, edges):
+            continue
+        dz = sz - pz
+        r = max(math.sqrt(dx * dx + dy * dy + dz * dz), r_min)
+        total += INTENSITY_COEFF * k / (r * r)
+    return total

@@ -47,6 +47,7 @@ import numpy as np
 from sim_plant.arena import read_toml
 from sim_plant.errors import FfrInputError
 from sim_plant.reality import Reality, reality_from_table, reality_to_table
+from sim_plant.sensors.models import FlameWorld, RangerModel
 
 DEFAULT_PROFILES = Path(__file__).resolve().parent.parent / "data" / "noise_profiles.toml"
 
@@ -131,6 +132,8 @@ class NoiseProfile:
     # plant truth and the team's calibration drawn apart (sim_plant/reality.py); not a sensor
     # noise: ``enabled`` below does not count it
     reality: Reality = field(default_factory=Reality)
+    ranger: RangerModel = field(default_factory=RangerModel)  # GP2D12 beam and timing (models.py)
+    flame_world: FlameWorld = field(default_factory=FlameWorld)  # flame strength, flicker, ...
     description: str = field(default="", compare=False)
     source: str = field(default="built-in", compare=False)
 
@@ -161,7 +164,15 @@ class NoiseProfile:
 _PROB_FIELDS = {"dropout_prob", "spike_prob", "flip_prob", "slip_prob", "slip_fraction"}
 _NONNEG_FIELDS = {"sigma", "quant_step", "spike_amp", "unit_offset_spread"}
 _GROUPS: dict[str, type] = {"ir": AnalogNoise, "flame": AnalogNoise, "line": LineNoise,
-                            "encoder": EncoderNoise}
+                            "encoder": EncoderNoise, "ranger": RangerModel,
+                            "flame_world": FlameWorld}
+_BOOL_FIELDS = {"latency", "random_phase"}
+# field: (lowest, highest) allowed, inclusive
+_RANGES: dict[str, tuple[float, float]] = {
+    "beam_half_angle_deg": (0.0, 30.0), "beam_rays": (1, 64), "period_spread": (0.0, 0.03),
+    "strength_min": (0.0, 100.0), "strength_max": (0.0, 100.0), "flicker_amp": (0.0, 1.0),
+    "flicker_hz": (0.0, 50.0), "wall_reflectance": (0.0, 1.0), "afterglow_s": (0.0, 10.0),
+}
 
 
 def _group(src: str, prefix: str, cls: type, table: Any) -> Any:
@@ -173,6 +184,19 @@ def _group(src: str, prefix: str, cls: type, table: Any) -> Any:
         fname = f"{prefix}.{key}"
         if key not in names:
             raise FfrInputError(src, fname, v, f"unknown field (known: {', '.join(sorted(names))})")
+        if key in _BOOL_FIELDS:
+            if not isinstance(v, bool):
+                raise FfrInputError(src, fname, v, "must be true or false")
+            kwargs[key] = v
+            continue
+        if key == "beam_rays" and (isinstance(v, bool) or not isinstance(v, int)):
+            raise FfrInputError(src, fname, v, "must be a whole number")
+        if key in _RANGES and (isinstance(v, int | float) and not isinstance(v, bool)
+                               and not _RANGES[key][0] <= v <= _RANGES[key][1]):
+            raise FfrInputError(src, fname, v, f"must be in [{_RANGES[key][0]}, {_RANGES[key][1]}]")
+        if key == "beam_rays":
+            kwargs[key] = int(v)
+            continue
         if key == "dropout_mode":
             if v not in _DROPOUT_MODES:
                 raise FfrInputError(src, fname, v, f"must be one of {_DROPOUT_MODES}")
@@ -188,6 +212,9 @@ def _group(src: str, prefix: str, cls: type, table: Any) -> Any:
     if "unit_gain_spread" in kwargs and not 0.0 <= kwargs["unit_gain_spread"] < 1.0:
         raise FfrInputError(src, f"{prefix}.unit_gain_spread", kwargs["unit_gain_spread"], "must be in [0, 1)")
     g = cls(**kwargs)
+    if isinstance(g, FlameWorld) and g.strength_max < g.strength_min:
+        raise FfrInputError(src, f"{prefix}.strength_max", g.strength_max,
+                            f"must be >= strength_min ({g.strength_min})")
     if isinstance(g, AnalogNoise) and g.dropout_prob + g.spike_prob > 1.0:
         raise FfrInputError(src, f"{prefix}.spike_prob", g.spike_prob,
                             "dropout_prob + spike_prob must be <= 1")

@@ -28,9 +28,10 @@ from sim_plant.sensors.channels import (
     N_CHANNELS,
 )
 from sim_plant.sensors.encoders import encoder_counts
-from sim_plant.sensors.flame_sensor import FlameModel, flame_sensor_fc
-from sim_plant.sensors.gp2d12 import IR_MV_MAX, Gp2d12Model, ir_ray_distance, mv_of_distance
+from sim_plant.sensors.flame_sensor import FlameModel, flame_sensor_fc, point_fc, reflected_fc
+from sim_plant.sensors.gp2d12 import IR_MV_MAX, Gp2d12Model, beam_distance, mv_of_distance
 from sim_plant.sensors.line_sensor import door_segments, white_fraction
+from sim_plant.sensors.models import FLICKER_RATIO, draw_flame, draw_ranger_timing
 from sim_plant.sensors.noise import (
     ENABLED,
     FLAME_BASE,
@@ -45,19 +46,22 @@ from sim_plant.sensors.noise import (
 
 _T_EPS = 1e-9  # s, a measurement due "at" a tick time is taken at that tick
 
-# ir_cfg columns: pose, phase, and the part's own gain and offset (unit spread)
-_BX, _BY, _CA, _SA, _PHASE, _UG, _UO = range(7)
-# ir_state columns
-_K, _HELD, _DIST, _CLEAN = range(4)
+# ir_cfg columns: pose, phase, the part's own gain and offset (unit spread), its period
+_BX, _BY, _CA, _SA, _PHASE, _UG, _UO, _PER = range(8)
+# ir_state columns (_PEND: the last measurement's output, shown one period later with latency)
+_K, _HELD, _DIST, _CLEAN, _PEND = range(5)
 # cfg entries
 (C_PERIOD, C_MAX_RANGE, C_FX, C_FY, C_FZ, C_AIM, C_HALF, C_RMIN, C_GAIN, C_DARK, C_FULL,
  C_CX, C_CY, C_CZ, C_LX, C_LY, C_HALFW, C_RHO, C_THRESH, C_HX, C_HY, C_HR, C_CR,
- C_TPR, C_UNIT_IR, C_IR_PIVOT, C_UNIT_FL, C_FL_PIVOT, C_FG_L, C_FG_R, C_FO_L, C_FO_R) = range(32)
-N_CFG = 32
+ C_TPR, C_UNIT_IR, C_IR_PIVOT, C_UNIT_FL, C_FL_PIVOT, C_FG_L, C_FG_R, C_FO_L, C_FO_R,
+ C_BEAM_HALF, C_BEAM_N, C_LATENCY, C_OBS_R, C_STRENGTH, C_FLICK_A, C_FLICK_W, C_FLICK_P1,
+ C_FLICK_P2, C_REFL, C_GLOW) = range(43)
+N_CFG = 43
 # st entries: state and diagnostics
 (S_INIT, S_T0, S_PHI_L, S_PHI_R, S_SLIP_L, S_SLIP_R, S_FLAME_PREV_L, S_FLAME_PREV_R,
- S_FC_L, S_FC_R, S_LINE_FRAC) = range(11)
-N_ST = 11
+ S_FC_L, S_FC_R, S_LINE_FRAC, S_FLAME_PHASE, S_OFF_T) = range(13)
+N_ST = 13
+# S_FLAME_PHASE: 0 = no sample yet saw the flame lit, 1 = lit, 2 = out since S_OFF_T
 
 
 @nb.njit(cache=True)
@@ -73,7 +77,7 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
                    lit: bool, out: np.ndarray, ir_cfg: np.ndarray, ir_state: np.ndarray,
                    cfg: np.ndarray, st: np.ndarray, edges: np.ndarray, wall_polys: np.ndarray,
                    doors: np.ndarray, npar: np.ndarray, normals: np.ndarray,
-                   uniforms: np.ndarray, npos: np.ndarray) -> bool:
+                   uniforms: np.ndarray, npos: np.ndarray, srcs: np.ndarray) -> bool:
     c = math.cos(theta)
     s = math.sin(theta)
     first = st[S_INIT] == 0.0
@@ -85,11 +89,11 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
     noisy = npar[ENABLED] != 0.0
     t0 = st[S_T0]
 
-    # GP2D12 rangers: measure when due, hold in between.
-    period = cfg[C_PERIOD]
+    # GP2D12 rangers: measure when due, hold in between (with latency: show the previous one).
     for i in range(ir_cfg.shape[0]):
         k = ir_state[i, _K]
         phase = ir_cfg[i, _PHASE]
+        period = ir_cfg[i, _PER]
         if first or t + _T_EPS >= t0 + phase + k * period:
             bx = ir_cfg[i, _BX]
             by = ir_cfg[i, _BY]
@@ -97,8 +101,9 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
             sa = ir_cfg[i, _SA]
             px = x + c * bx - s * by
             py = y + s * bx + c * by
-            d = ir_ray_distance(px, py, c * ca - s * sa, s * ca + c * sa, edges, wall_polys,
-                                cfg[C_MAX_RANGE])
+            d = beam_distance(px, py, c * ca - s * sa, s * ca + c * sa, cfg[C_BEAM_HALF],
+                              int(cfg[C_BEAM_N]), edges, wall_polys, cfg[C_MAX_RANGE],
+                              cfg[C_CX], cfg[C_CY], cfg[C_OBS_R])
             mv = mv_of_distance(d)
             ir_state[i, _DIST] = d
             ir_state[i, _CLEAN] = mv
@@ -106,21 +111,56 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
                 pv = cfg[C_IR_PIVOT]
                 mv = pv + ir_cfg[i, _UG] * (mv - pv) + ir_cfg[i, _UO]
             if noisy:
-                mv = apply_analog(mv, npar, IR_BASE, normals, uniforms, npos, ir_state[i, _HELD])
-            ir_state[i, _HELD] = min(max(_round(mv), 0.0), IR_MV_MAX)
+                mv = apply_analog(mv, npar, IR_BASE, normals, uniforms, npos, ir_state[i, _PEND])
+            mv = min(max(_round(mv), 0.0), IR_MV_MAX)
+            ir_state[i, _HELD] = mv if first or cfg[C_LATENCY] == 0.0 else ir_state[i, _PEND]
+            ir_state[i, _PEND] = mv
             while t + _T_EPS >= t0 + phase + k * period:
                 k += 1.0
             ir_state[i, _K] = k
         out[i] = np.int32(ir_state[i, _HELD])
 
+    # The flame's strength now: drawn strength, flicker, afterglow once it is out.
+    scale = 0.0
+    if lit:
+        st[S_FLAME_PHASE] = 1.0
+        scale = cfg[C_STRENGTH]
+        if cfg[C_FLICK_A] > 0.0:
+            w = cfg[C_FLICK_W] * t
+            scale *= 1.0 + cfg[C_FLICK_A] * (0.6 * math.sin(w + cfg[C_FLICK_P1])
+                                             + 0.4 * math.sin(FLICKER_RATIO * w + cfg[C_FLICK_P2]))
+    else:
+        if st[S_FLAME_PHASE] == 1.0:
+            st[S_FLAME_PHASE] = 2.0
+            st[S_OFF_T] = t
+        tau = cfg[C_GLOW]
+        if st[S_FLAME_PHASE] == 2.0 and tau > 0.0 and t - st[S_OFF_T] < 10.0 * tau:
+            scale = cfg[C_STRENGTH] * math.exp(-(t - st[S_OFF_T]) / tau)
+
     # Flame sensors, left (+y, +aim) then right.
     for j in range(2):
         side = 1.0 if j == 0 else -1.0
         fc = 0.0
-        if lit:
+        if scale > 0.0:
             fc = flame_sensor_fc(x, y, c, s, cfg[C_FX], side * cfg[C_FY], cfg[C_FZ],
                                  side * cfg[C_AIM], theta, cfg[C_CX], cfg[C_CY], cfg[C_CZ],
                                  edges, cfg[C_HALF], cfg[C_RMIN])
+            if cfg[C_REFL] > 0.0:
+                by = side * cfg[C_FY]
+                px = x + c * cfg[C_FX] - s * by
+                py = y + s * cfg[C_FX] + c * by
+                fc += cfg[C_REFL] * reflected_fc(px, py, cfg[C_FZ], theta + side * cfg[C_AIM],
+                                                 cfg[C_CX], cfg[C_CY], cfg[C_CZ], edges,
+                                                 cfg[C_HALF], cfg[C_RMIN])
+            fc = scale * fc
+        if srcs.shape[0] > 0:
+            by = side * cfg[C_FY]
+            px = x + c * cfg[C_FX] - s * by
+            py = y + s * cfg[C_FX] + c * by
+            for q in range(srcs.shape[0]):
+                fc += srcs[q, 3] * point_fc(px, py, cfg[C_FZ], theta + side * cfg[C_AIM],
+                                            srcs[q, 0], srcs[q, 1], srcs[q, 2], edges,
+                                            cfg[C_HALF], cfg[C_RMIN])
         st[S_FC_L + j] = fc
         v = cfg[C_GAIN] * fc + cfg[C_DARK]
         if cfg[C_UNIT_FL] != 0.0:
@@ -165,13 +205,19 @@ class SensorSuite:
     profile turns something on, and is the only source of randomness. The
     candle's position is read once here; whether it is lit, at every sample.
     ``ir_model`` / ``flame_model`` override the GP2D12 timing and the flame
-    sensor's gain, dark level and field of view.
+    sensor's gain, dark level and field of view. The beam, latency, per-part
+    timing and the flame's strength, flicker, reflections and afterglow come
+    from the profile's ``ranger`` and ``flame_world`` groups (models.py); the
+    candle's base is a ranger target when ``candle.base_radius`` > 0;
+    ``ir_sources``: (n, 4) rows x, y, z (m), strength (x a standard flame),
+    other infrared sources the flame sensors see.
     """
 
     def __init__(self, arena: Arena, robot: RobotParams, candle: Candle,
                  noise: NoiseProfile | None = None, rng: np.random.Generator | None = None,
                  *, ir_model: Gp2d12Model | None = None,
-                 flame_model: FlameModel | None = None) -> None:
+                 flame_model: FlameModel | None = None,
+                 ir_sources: np.ndarray | None = None) -> None:
         self.arena = arena
         self.robot = robot
         self.candle = candle
@@ -184,9 +230,10 @@ class SensorSuite:
         phases = self.ir_model.phases(len(IR_NAMES))
         self._ir_cfg = np.array(
             [[robot.ir[n].x, robot.ir[n].y, math.cos(math.radians(robot.ir[n].angle_deg)),
-              math.sin(math.radians(robot.ir[n].angle_deg)), phases[i], 1.0, 0.0]
+              math.sin(math.radians(robot.ir[n].angle_deg)), phases[i], 1.0, 0.0,
+              self.ir_model.period]
              for i, n in enumerate(IR_NAMES)], dtype=np.float64)
-        self._ir_state = np.zeros((len(IR_NAMES), 4))
+        self._ir_state = np.zeros((len(IR_NAMES), 5))
         fm = self.flame_model
         fl = robot.flame
         ls = robot.line_sensor
@@ -223,9 +270,31 @@ class SensorSuite:
         cfg[C_FG_L], cfg[C_FG_R] = fl_units[:, 0]
         cfg[C_FO_L], cfg[C_FO_R] = fl_units[:, 1]
         self.units = {"ir": ir_units, "flame": fl_units}
+        # issue 12's models; their draws (if any) after the units' (models.py)
+        rm = self.noise.ranger
+        periods, phases2 = draw_ranger_timing(rm, self.ir_model.period, phases, rng)
+        self._ir_cfg[:, _PER] = periods
+        self._ir_cfg[:, _PHASE] = phases2
+        cfg[C_BEAM_HALF] = math.radians(rm.beam_half_angle_deg)
+        cfg[C_BEAM_N] = rm.beam_rays
+        cfg[C_LATENCY] = 1.0 if rm.latency else 0.0
+        cfg[C_OBS_R] = candle.base_radius
+        fw = self.noise.flame_world
+        strength, p1, p2 = draw_flame(fw, rng)
+        cfg[C_STRENGTH] = strength
+        cfg[C_FLICK_A] = fw.flicker_amp
+        cfg[C_FLICK_W] = 2.0 * math.pi * fw.flicker_hz
+        cfg[C_FLICK_P1], cfg[C_FLICK_P2] = p1, p2
+        cfg[C_REFL] = fw.wall_reflectance
+        cfg[C_GLOW] = fw.afterglow_s
+        self.flame_strength = strength
+        srcs = np.zeros((0, 4)) if ir_sources is None else np.asarray(ir_sources, dtype=np.float64)
+        if srcs.ndim != 2 or srcs.shape[1] != 4:
+            raise ValueError(f"ir_sources must be (n, 4): x, y, z, strength; got {srcs.shape}")
+        self._srcs = np.ascontiguousarray(srcs)
         self._args = (self._ir_cfg, self._ir_state, cfg, self._st, arena.wall_edges,
                       arena.wall_polys, door_segments(arena), self.noise.packed(),
-                      self._stream.normals, self._stream.uniforms, self._stream.pos)
+                      self._stream.normals, self._stream.uniforms, self._stream.pos, self._srcs)
         self._checked_out: np.ndarray | None = None
 
     def sample(self, t: float, x: float, y: float, theta: float, phi_l: float, phi_r: float,
@@ -253,8 +322,18 @@ class SensorSuite:
     # -- ground truth, for tests and plots ---------------------------------
     @property
     def ir_distance(self) -> np.ndarray:
-        """True ray distance (m) at each ranger's last measurement, IR_NAMES order."""
+        """True (beam) distance (m) at each ranger's last measurement, IR_NAMES order (with
+        latency, the firmware sees it one period later)."""
         return self._ir_state[:, _DIST].copy()
+
+    @property
+    def ir_periods(self) -> np.ndarray:
+        """Each ranger's measurement period (s) and, below, first measurement offset (s)."""
+        return self._ir_cfg[:, _PER].copy()
+
+    @property
+    def ir_phases(self) -> np.ndarray:
+        return self._ir_cfg[:, _PHASE].copy()
 
     @property
     def ir_mv_clean(self) -> np.ndarray:

@@ -118,7 +118,7 @@ def test_reality_group_round_trips_and_rejects_bad_input(tmp_path):
 
 
 def test_the_reality_command_prints_each_seeds_draw(capsys):
-    from sim_plant.reality import main
+    from sim_plant.reality_report import main
     assert main(["0:3"]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert len(lines) == 3 and lines[1].startswith("seed     1  chi0 ")

@@ -8,7 +8,14 @@ import numpy as np
 import pytest
 
 from sim_plant.candle import Candle
-from sim_plant.sensors import CH_IR, Gp2d12Model, SensorSuite, distance_to_mv, new_output
+from sim_plant.sensors import (
+    CH_IR,
+    Gp2d12Model,
+    SensorSuite,
+    distance_to_mv,
+    load_noise_profile,
+    new_output,
+)
 
 # The GP2D12 datasheet's typical curve (as in sim_plant/sensors/gp2d12.py): cm -> V.
 DATASHEET = [(10, 2.45), (12, 2.125), (14, 1.86), (16, 1.66), (18, 1.52), (20, 1.38),
@@ -69,12 +76,37 @@ def test_vectorised_keeps_shape_and_scalar_gives_float():
     ],
 )
 def test_ray_geometry_known_pose(arena, robot, x, y, theta, name, expected):
-    suite = make_suite(arena, robot)
+    suite = make_suite(arena, robot, noise=load_noise_profile("single_ray"))  # one ray
     out = new_output()
     suite.sample(0.0, x, y, theta, 0.0, 0.0, out)
     i = ("CF", "LF", "RF", "LR", "RR").index(name)
     assert suite.ir_distance[i] == pytest.approx(expected, abs=1e-9)
     assert out[CH_IR[i]] == math.floor(distance_to_mv(expected) + 0.5)
+
+
+@pytest.mark.parametrize(
+    ("x", "y", "theta", "name", "perp", "incidence"),
+    [   # the poses above; perpendicular distance to the wall hit and the aim's angle to its normal
+        (2.0, 0.5, 0.0, "CF", 2.42 - 2.10, 0.0),
+        (1.8, 0.5, math.pi / 2, "CF", 0.92 - 0.60, 0.0),
+        (1.8, 0.3, math.pi, "CF", 1.70 - 1.22, 0.0),
+        # lower than before: from (2.0, 0.5) the 47-degree ray would hit the top wall (a corner)
+        (2.0, 0.3, 0.0, "LF", 2.42 - 2.08, math.pi / 4),
+    ],
+)
+def test_default_beam_geometry_known_pose(arena, robot, x, y, theta, name, perp, incidence):
+    """The default beam: 5 rays over +-2 degrees, ray j hits the flat wall at
+    d_j = perp / cos(incidence + o_j), and the reading is 1/d = sum(d_j^-3) / sum(d_j^-2)."""
+    suite = make_suite(arena, robot)
+    out = new_output()
+    suite.sample(0.0, x, y, theta, 0.0, 0.0, out)
+    i = ("CF", "LF", "RF", "LR", "RR").index(name)
+    h = math.radians(2.0)
+    ds = [perp / math.cos(incidence - h + 2 * h * j / 4) for j in range(5)]
+    want = sum(d ** -2 for d in ds) / sum(d ** -3 for d in ds)
+    assert suite.ir_distance[i] == pytest.approx(want, abs=1e-9)
+    assert min(ds) < want < max(ds) or incidence == 0.0
+    assert out[CH_IR[i]] == math.floor(distance_to_mv(want) + 0.5)
 
 
 def test_ranger_inside_wall_reads_contact(arena, robot):
@@ -132,3 +164,16 @@ def test_configurable_period(arena, robot):
         suite.sample(n * 0.01, 1.6 + 0.01 * n, 0.5, 0.0, 0.0, 0.0, out)
         seen.add(int(out[CH_IR[0]]))
     assert len(seen) == 5
+
+
+def test_default_beam_blurs_a_corner(arena, robot):
+    """LF from (2.0, 0.5) aims 45 degrees at the right wall 1 cm below the room's top-right
+    corner: its outer rays hit the top wall nearer, so the beam reads nearer than the one ray."""
+    one = make_suite(arena, robot, noise=load_noise_profile("single_ray"))
+    beam = make_suite(arena, robot)
+    out = new_output()
+    one.sample(0.0, 2.0, 0.5, 0.0, 0.0, 0.0, out)
+    beam.sample(0.0, 2.0, 0.5, 0.0, 0.0, 0.0, out)
+    d1, db = one.ir_distance[1], beam.ir_distance[1]
+    assert d1 == pytest.approx((2.42 - 2.08) * math.sqrt(2.0))
+    assert db < d1 - 0.002
