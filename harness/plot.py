@@ -22,7 +22,7 @@ from harness.scoring import MissionResult  # noqa: E402
 _STATE_COLORS = {
     "FOLLOW": "#1f77b4", "TURN": "#9467bd", "FORWARD": "#17becf", "ENTER": "#2ca02c",
     "SCAN": "#bcbd22", "APPROACH": "#ff7f0e", "EXTINGUISH": "#d62728", "VERIFY": "#8c564b",
-    "TO_DOOR": "#e377c2", "EXIT": "#7f7f7f", "HOMING": "#393b79",
+    "TO_DOOR": "#e377c2", "EXIT": "#7f7f7f", "HOMING": "#393b79", "ORIENT": "#f7b6d2",
 }
 
 

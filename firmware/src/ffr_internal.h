@@ -154,6 +154,30 @@ void ffr_stop(ffr_state_t *st);
  * so it is short, never below a crawl that still overcomes friction. */
 float ffr_stopping_speed(float remaining_mm, float top);
 
+/* home_orient.c: before the route, which way the robot faces at home. */
+void ffr_orient_begin(ffr_state_t *st);
+/* Returns 1 once the robot faces the route's first direction and odometry's
+ * frame is square to the walls with heading 0 along it. */
+int ffr_orient_step(ffr_state_t *st);
+/* The walls' direction (rad, in (-pi/4, pi/4]) from the segment sums, and the
+ * free distance (mm) toward `dir` (rad, odometry) for the body (a band of its
+ * width plus a margin) from (cx, cy), mm from the sweep's centre. */
+float ffr_orient_square(const ffr_home_orient_t *o);
+float ffr_orient_free_mm(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir, float cx, float cy);
+/* The route's first direction: k (0..3) of the four directions square to
+ * the walls, dir0 + k * 90 degrees, by the home_wall_side rule; -1 none open. */
+int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
+                      float cy);
+/* Where to stand before setting off: (dx, dy) mm from (cx, cy) that puts a wall
+ * within a hallway's width (2 x wall_target_mm) at wall_target_mm, or the
+ * robot between two such walls, along each of the two square axes. */
+void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
+                       float *dx, float *dy);
+/* Record one tick's hits (the sweep). */
+void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_odometry_t *odo,
+                       const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT]);
+void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo);
+
 /* route.c: the route program interpreter. */
 void ffr_route_begin(ffr_state_t *st, uint8_t pc);
 void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in);

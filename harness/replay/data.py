@@ -35,6 +35,7 @@ STATE_COLORS = {
     "IDLE": "#aaaaaa", "FOLLOW": "#1f77b4", "TURN": "#9467bd", "FORWARD": "#17becf", "ENTER": "#2ca02c",
     "SCAN": "#bcbd22", "APPROACH": "#ff7f0e", "EXTINGUISH": "#d62728", "VERIFY": "#8c564b",
     "TO_DOOR": "#e377c2", "EXIT": "#7f7f7f", "HOMING": "#393b79", "DONE": "#ffffff", "FAILED": "#ff0000",
+    "ORIENT": "#f7b6d2",
 }
 
 # Inverse of the GP2D12 curve on its far branch (8 cm .. 80 cm), by table:

@@ -1,0 +1,329 @@
+/*
+ * Which way does the robot face at home? Before the route starts, it turns
+ * in place a little over a quarter turn (ORIENT_SWEEP_DEG, left). Its five
+ * rangers look ahead, 45 degrees and 135 degrees either side, so a quarter
+ * turn sweeps every direction at least once. Every valid hit is placed in
+ * odometry's frame and:
+ *
+ * - short stretches of one ranger's successive hits (40..120 mm apart) lie
+ *   along a wall: their direction, taken modulo 90 degrees (contest walls
+ *   meet at right angles), averaged over the sweep, is the walls' direction
+ *   in odometry's frame;
+ * - the nearest hit per 10-degree direction bin, seen from where the sweep
+ *   began, tells how far is free in each of the four directions square to
+ *   the walls.
+ *
+ * If a wall within a hallway's width (2 x wall_target_mm) of it is not at
+ * wall_target_mm (or the robot is not midway between two such walls), it
+ * first moves square to the walls to stand there (SHIFT_TOL_MM of slack), as
+ * the wall following will want: the home circle is wider than the room a
+ * hallway leaves beside the body. The route's first direction is then the
+ * one with open floor ahead for the body (no wall within open_mm in a band
+ * of its width) and a wall close on the configured side
+ * (home_wall_side; "any": walls close on the most sides, i.e. along a
+ * hallway); ties go to the smaller turn. The robot turns to it, and
+ * odometry's frame is turned so that this direction is heading 0, square to
+ * the walls (wall_direction.c relies on that), as if placed facing it.
+ * Nothing of one map's distances: only "open ahead", "a wall close beside".
+ */
+#include "ffr_internal.h"
+
+#define ORIENT_SWEEP_DEG 100.0f
+#define SEG_MIN_MM 40.0f  /* a stretch of one ranger's hits: at least this long (noise)  */
+#define SEG_MAX_MM 120.0f /* at most this: longer is a jump to another wall              */
+#define SEG_RANGE_MM 500.0f /* hits farther than this are too noisy for a direction      */
+#define SEG_MIN_TOTAL_MM 150.0f /* less wall than this seen: keep the heading as placed  */
+#define BIN_NONE 0xFFFFu
+#define BAND_MARGIN_MM 30.0f /* the body's path: its half width plus this each side      */
+#define SHIFT_TOL_MM 40.0f   /* a shift shorter than this is not made                    */
+
+enum { PH_SWEEP = 0, PH_SHIFT_TURN = 1, PH_SHIFT_DRIVE = 2, PH_TURN = 3, PH_DONE = 4 };
+
+static const float k_bin_rad = 2.0f * FFR_PI / (float)FFR_ORIENT_BINS;
+
+void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
+{
+    int i;
+    o->phase = PH_SWEEP;
+    o->reverse = 0u;
+    o->reserved = 0u;
+    o->x0_mm = odo->x_mm;
+    o->y0_mm = odo->y_mm;
+    o->h0_rad = odo->heading_rad;
+    o->dir0_rad = 0.0f;
+    o->target_rad = odo->heading_rad;
+    o->goal_mm = 0.0f;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        o->anchor_ok[i] = 0u;
+        o->anchor_x_mm[i] = 0.0f;
+        o->anchor_y_mm[i] = 0.0f;
+    }
+    o->c4 = 0.0f;
+    o->s4 = 0.0f;
+    o->w = 0.0f;
+    for (i = 0; i < FFR_ORIENT_BINS; ++i) {
+        o->bin_mm[i] = (uint16_t)BIN_NONE;
+        o->bin_x_mm[i] = 0.0f;
+        o->bin_y_mm[i] = 0.0f;
+    }
+}
+
+/* bin of a direction (rad, any value) */
+static int bin_of(float dir)
+{
+    float a = dir;
+    int b;
+    while (a < 0.0f) {
+        a += 2.0f * FFR_PI;
+    }
+    while (a >= 2.0f * FFR_PI) {
+        a -= 2.0f * FFR_PI;
+    }
+    b = (int)(a / k_bin_rad);
+    return b >= FFR_ORIENT_BINS ? FFR_ORIENT_BINS - 1 : b;
+}
+
+void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_odometry_t *odo,
+                       const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT])
+{
+    float c = ffr_cosf(odo->heading_rad);
+    float s = ffr_sinf(odo->heading_rad);
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        float px, py, dx, dy, r, len;
+        int b;
+        if (!ffr_ir_valid(cfg, ir_mm[i])) {
+            o->anchor_ok[i] = 0u;
+            continue;
+        }
+        /* the hit in odometry's frame, relative to the sweep's centre */
+        px = odo->x_mm + c * g->hit_x_mm[i] - s * g->hit_y_mm[i] - o->x0_mm;
+        py = odo->y_mm + s * g->hit_x_mm[i] + c * g->hit_y_mm[i] - o->y0_mm;
+        r = ffr_sqrtf(px * px + py * py);
+        b = bin_of(ffr_atan2f(py, px));
+        if (r < (float)o->bin_mm[b]) {
+            o->bin_mm[b] = (uint16_t)(r < 65534.0f ? r : 65534.0f);
+            o->bin_x_mm[b] = px;
+            o->bin_y_mm[b] = py;
+        }
+        if (ir_mm[i] > SEG_RANGE_MM) {
+            o->anchor_ok[i] = 0u;
+            continue;
+        }
+        if (!o->anchor_ok[i]) {
+            o->anchor_ok[i] = 1u;
+            o->anchor_x_mm[i] = px;
+            o->anchor_y_mm[i] = py;
+            continue;
+        }
+        dx = px - o->anchor_x_mm[i];
+        dy = py - o->anchor_y_mm[i];
+        len = ffr_sqrtf(dx * dx + dy * dy);
+        if (len < SEG_MIN_MM) {
+            continue;
+        }
+        if (len <= SEG_MAX_MM) {
+            float a4 = 4.0f * ffr_atan2f(dy, dx);
+            o->c4 += len * ffr_cosf(a4);
+            o->s4 += len * ffr_sinf(a4);
+            o->w += len;
+        }
+        o->anchor_x_mm[i] = px;
+        o->anchor_y_mm[i] = py;
+    }
+}
+
+float ffr_orient_square(const ffr_home_orient_t *o)
+{
+    return 0.25f * ffr_atan2f(o->s4, o->c4);
+}
+
+float ffr_orient_free_mm(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir, float cx, float cy)
+{
+    float ux = ffr_cosf(dir), uy = ffr_sinf(dir);
+    float band = cfg->body_half_width_mm + BAND_MARGIN_MM;
+    float best = 65535.0f;
+    int b;
+    for (b = 0; b < FFR_ORIENT_BINS; ++b) {
+        float qx, qy, along, lat;
+        if (o->bin_mm[b] == BIN_NONE) {
+            continue;
+        }
+        qx = o->bin_x_mm[b] - cx;
+        qy = o->bin_y_mm[b] - cy;
+        along = qx * ux + qy * uy;
+        lat = ffr_absf(qy * ux - qx * uy);
+        if (along > 0.0f && lat < band && along < best) {
+            best = along;
+        }
+    }
+    return best;
+}
+
+int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
+                      float cy)
+{
+    float free_mm[4];
+    int k, best = -1;
+    int best_score = -1;
+    float best_turn = 0.0f;
+    for (k = 0; k < 4; ++k) {
+        free_mm[k] = ffr_orient_free_mm(o, cfg, dir0 + (float)k * 0.5f * FFR_PI, cx, cy);
+    }
+    for (k = 0; k < 4; ++k) {
+        int left_wall = free_mm[(k + 1) & 3] < cfg->open_mm;
+        int right_wall = free_mm[(k + 3) & 3] < cfg->open_mm;
+        int score;
+        float turn = ffr_absf(ffr_wrap_pi(dir0 + (float)k * 0.5f * FFR_PI - heading));
+        if (free_mm[k] < cfg->open_mm) {
+            continue; /* a wall ahead: not the way out */
+        }
+        if (cfg->home_wall_side == FFR_HOME_WALL_LEFT) {
+            score = left_wall;
+        } else if (cfg->home_wall_side == FFR_HOME_WALL_RIGHT) {
+            score = right_wall;
+        } else {
+            score = left_wall + right_wall;
+        }
+        if (score > best_score || (score == best_score && turn < best_turn)) {
+            best = k;
+            best_score = score;
+            best_turn = turn;
+        }
+    }
+    return best;
+}
+
+void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
+                       float *dx, float *dy)
+{
+    float near = 2.0f * cfg->wall_target_mm;
+    int k;
+    *dx = 0.0f;
+    *dy = 0.0f;
+    for (k = 0; k < 2; ++k) {
+        float dir = dir0 + (float)k * 0.5f * FFR_PI;
+        float a = ffr_orient_free_mm(o, cfg, dir, cx, cy);
+        float b = ffr_orient_free_mm(o, cfg, dir + FFR_PI, cx, cy);
+        float s = 0.0f; /* along dir */
+        if (a < near && b < near) {
+            s = 0.5f * (a - b);
+        } else if (a < near) {
+            s = a - cfg->wall_target_mm;
+        } else if (b < near) {
+            s = cfg->wall_target_mm - b;
+        }
+        *dx += s * ffr_cosf(dir);
+        *dy += s * ffr_sinf(dir);
+    }
+}
+
+void ffr_orient_begin(ffr_state_t *st)
+{
+    ffr_orient_reset(&st->orient, &st->odo);
+    st->state = FFR_ST_ORIENT;
+}
+
+/* odometry's frame turned by -rot about its origin: `rot` becomes heading 0 */
+static void reframe(ffr_odometry_t *odo, float rot)
+{
+    float c = ffr_cosf(rot);
+    float s = ffr_sinf(rot);
+    float x = odo->x_mm, y = odo->y_mm;
+    odo->x_mm = c * x + s * y;
+    odo->y_mm = -s * x + c * y;
+    odo->heading_rad -= rot;
+}
+
+/* the unwrapped heading nearest `heading` that points along `dir` */
+static float nearest(float heading, float dir) { return heading + ffr_wrap_pi(dir - heading); }
+
+/* the route's first direction from where the robot stands now */
+static void aim(ffr_state_t *st)
+{
+    ffr_home_orient_t *o = &st->orient;
+    float cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
+    int k = ffr_orient_choose(o, &st->cfg, o->dir0_rad, st->odo.heading_rad, cx, cy);
+    float dir = o->dir0_rad + (float)(k < 0 ? 0 : k) * 0.5f * FFR_PI;
+    if (k < 0) {
+        /* nothing open: the square direction nearest the one placed in */
+        dir = nearest(o->h0_rad, o->dir0_rad);
+        while (dir - o->h0_rad > 0.25f * FFR_PI) {
+            dir -= 0.5f * FFR_PI;
+        }
+        while (dir - o->h0_rad < -0.25f * FFR_PI) {
+            dir += 0.5f * FFR_PI;
+        }
+    }
+    o->target_rad = nearest(st->odo.heading_rad, dir);
+    o->phase = PH_TURN;
+}
+
+int ffr_orient_step(ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    ffr_home_orient_t *o = &st->orient;
+    ffr_stop(st);
+    if (o->phase == PH_SWEEP) {
+        /* toward the side the route wants its wall on: it is usually the way back */
+        float sweep = (cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? -1.0f : 1.0f) * ORIENT_SWEEP_DEG * FFR_DEG;
+        float done = ffr_absf(st->odo.heading_rad - o->h0_rad);
+        ffr_orient_record(o, cfg, &st->odo, &st->ir_geom, st->ir_mm);
+        if (done < ffr_absf(sweep) - 2.0f * FFR_DEG) {
+            /* on at full turn rate past the end: no slowing down to stop there */
+            st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->h0_rad + 1.5f * sweep);
+            return 0;
+        }
+        if (o->w < SEG_MIN_TOTAL_MM) {
+            /* no walls to go by: as placed */
+            o->dir0_rad = o->h0_rad;
+            o->target_rad = o->h0_rad;
+            o->phase = PH_TURN;
+        } else {
+            float dx, dy, cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
+            o->dir0_rad = ffr_orient_square(o);
+            ffr_orient_centre(o, cfg, o->dir0_rad, cx, cy, &dx, &dy);
+            if (dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
+                float dir = ffr_atan2f(dy, dx);
+                float fwd = nearest(st->odo.heading_rad, dir);
+                float back = nearest(st->odo.heading_rad, dir + FFR_PI);
+                o->reverse = ffr_absf(back - st->odo.heading_rad) < ffr_absf(fwd - st->odo.heading_rad);
+                o->target_rad = o->reverse ? back : fwd;
+                o->goal_mm = ffr_sqrtf(dx * dx + dy * dy);
+                o->phase = PH_SHIFT_TURN;
+            } else {
+                aim(st);
+            }
+        }
+    }
+    if (o->phase == PH_SHIFT_TURN) {
+        st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->target_rad);
+        if (!ffr_turn_done(cfg, &st->odo, o->target_rad)) {
+            return 0;
+        }
+        ffr_stop(st);
+        o->goal_mm += st->odo.dist_mm; /* the shift's length, from here */
+        o->phase = PH_SHIFT_DRIVE;
+    }
+    if (o->phase == PH_SHIFT_DRIVE) {
+        float left = o->goal_mm - st->odo.dist_mm;
+        int blocked = !o->reverse && ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm;
+        if (left > 0.0f && !blocked) {
+            float v = ffr_stopping_speed(left, cfg->room_speed_mm_s);
+            ffr_drive_heading(st, o->target_rad, o->reverse ? -v : v);
+            return 0;
+        }
+        ffr_stop(st);
+        aim(st);
+    }
+    if (o->phase == PH_TURN) {
+        st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->target_rad);
+        if (!ffr_turn_done(cfg, &st->odo, o->target_rad)) {
+            return 0;
+        }
+        ffr_stop(st);
+        reframe(&st->odo, o->target_rad);
+        o->phase = PH_DONE;
+    }
+    return 1;
+}
