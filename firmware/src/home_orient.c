@@ -28,14 +28,15 @@
  */
 #include "ffr_internal.h"
 
-#define ORIENT_SWEEP_DEG 100.0f
+#define ORIENT_SWEEP_DEG 95.0f
 #define SEG_MIN_MM 40.0f  /* a stretch of one ranger's hits: at least this long (noise)  */
 #define SEG_MAX_MM 120.0f /* at most this: longer is a jump to another wall              */
-#define SEG_RANGE_MM 500.0f /* hits farther than this are too noisy for a direction      */
+#define SEG_RANGE_MM 350.0f /* hits farther than this are too noisy for a direction      */
 #define SEG_MIN_TOTAL_MM 150.0f /* less wall than this seen: keep the heading as placed  */
 #define BIN_NONE 0xFFFFu
 #define BAND_MARGIN_MM 30.0f /* the body's path: its half width plus this each side      */
 #define SHIFT_TOL_MM 40.0f   /* a shift shorter than this is not made                    */
+#define QUICK_TOL_DEG 2.0f
 
 enum { PH_SWEEP = 0, PH_SHIFT_TURN = 1, PH_SHIFT_DRIVE = 2, PH_TURN = 3, PH_DONE = 4 };
 
@@ -238,6 +239,25 @@ static void reframe(ffr_odometry_t *odo, float rot)
 /* the unwrapped heading nearest `heading` that points along `dir` */
 static float nearest(float heading, float dir) { return heading + ffr_wrap_pi(dir - heading); }
 
+/* A turn in place at home: quicker than the route's turns (twice the gain,
+ * done within 2 degrees without waiting for the spin to settle: the next
+ * motion holds the heading anyway). 1 when there. */
+static int quick_turn(ffr_state_t *st, float target)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    float err = target - st->odo.heading_rad;
+    float lim = cfg->turn_rate_deg_s * FFR_DEG;
+    float w = ffr_clampf(2.0f * cfg->heading_kp * err, -lim, lim);
+    if (ffr_absf(err) < QUICK_TOL_DEG * FFR_DEG) {
+        return 1;
+    }
+    if (ffr_absf(w) < 30.0f * FFR_DEG) {
+        w = err > 0.0f ? 30.0f * FFR_DEG : -30.0f * FFR_DEG;
+    }
+    st->cmd_w_rad_s = w;
+    return 0;
+}
+
 /* the route's first direction from where the robot stands now */
 static void aim(ffr_state_t *st)
 {
@@ -297,8 +317,7 @@ int ffr_orient_step(ffr_state_t *st)
         }
     }
     if (o->phase == PH_SHIFT_TURN) {
-        st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->target_rad);
-        if (!ffr_turn_done(cfg, &st->odo, o->target_rad)) {
+        if (!quick_turn(st, o->target_rad)) {
             return 0;
         }
         ffr_stop(st);
@@ -309,7 +328,7 @@ int ffr_orient_step(ffr_state_t *st)
         float left = o->goal_mm - st->odo.dist_mm;
         int blocked = !o->reverse && ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm;
         if (left > 0.0f && !blocked) {
-            float v = ffr_stopping_speed(left, cfg->room_speed_mm_s);
+            float v = ffr_stopping_speed(left, cfg->cruise_speed_mm_s);
             ffr_drive_heading(st, o->target_rad, o->reverse ? -v : v);
             return 0;
         }
@@ -317,8 +336,7 @@ int ffr_orient_step(ffr_state_t *st)
         aim(st);
     }
     if (o->phase == PH_TURN) {
-        st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->target_rad);
-        if (!ffr_turn_done(cfg, &st->odo, o->target_rad)) {
+        if (!quick_turn(st, o->target_rad)) {
             return 0;
         }
         ffr_stop(st);

@@ -39,9 +39,11 @@ def turn_radius_m() -> float:
     return math.hypot(max(b.length_front, b.length_rear), b.width / 2.0)
 
 
-def start_poses(n: int, seed: int, arena: Arena | None = None) -> list[tuple[float, float, float]]:
+def start_poses(n: int, seed: int, arena: Arena | None = None,
+                centre: bool = False) -> list[tuple[float, float, float]]:
     """n start poses: heading k*360/n plus a uniform jitter within its slot, position uniform in the
-    home circle where the robot can turn in place (drawn from one seeded generator)."""
+    home circle where the robot can turn in place (drawn from one seeded generator); with
+    ``centre``, at the circle's centre."""
     arena = arena or load_arena()
     rng = np.random.default_rng(seed)
     hx, hy = arena.home_center
@@ -49,12 +51,14 @@ def start_poses(n: int, seed: int, arena: Arena | None = None) -> list[tuple[flo
     poses = []
     for k in range(n):
         heading = (k + rng.uniform(0.0, 1.0)) * 2.0 * math.pi / n
-        while True:
+        while not centre:
             r = arena.home_radius * math.sqrt(rng.uniform(0.0, 1.0))
             a = rng.uniform(0.0, 2.0 * math.pi)
             x, y = hx + r * math.cos(a), hy + r * math.sin(a)
             if arena.wall_distance(x, y) >= need:
                 break
+        else:
+            x, y = hx, hy
         poses.append((x, y, heading))
     return poses
 
@@ -91,12 +95,13 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--noise", default="none")
     ap.add_argument("--rooms", default="1,2,3,4")
+    ap.add_argument("--centre", action="store_true", help="poses: every start at the home circle's centre")
     a = ap.parse_args(argv)
     rooms = [int(r) for r in a.rooms.split(",")]
     scns: list[Scenario] = []
     if a.what == "poses":
         for room in rooms:
-            for pose in start_poses(a.n, a.seed + room):
+            for pose in start_poses(a.n, a.seed + room, centre=a.centre):
                 scns.append(make_scenario(room=room, start=pose, noise=a.noise, seed=a.seed))
     else:
         for room in rooms:
