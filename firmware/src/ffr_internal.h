@@ -160,17 +160,18 @@ void ffr_orient_begin(ffr_state_t *st);
  * frame is square to the walls with heading 0 along it. */
 int ffr_orient_step(ffr_state_t *st);
 /* The walls' direction (rad, in (-pi/4, pi/4]) from the segment sums, and the
- * free distance (mm) toward `dir` (rad, odometry) for the body (a band of its
- * width plus a margin) from (cx, cy), mm from the sweep's centre. */
+ * free distance (mm) toward `dir` (rad, odometry) in a band of band_mm each
+ * side from (cx, cy), mm from the sweep's centre (65535: nothing seen). */
 float ffr_orient_square(const ffr_home_orient_t *o);
-float ffr_orient_free_mm(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir, float cx, float cy);
+float ffr_orient_free_mm(const ffr_home_orient_t *o, float band_mm, float dir, float cx, float cy);
 /* The route's first direction: k (0..3) of the four directions square to
  * the walls, dir0 + k * 90 degrees, by the home_wall_side rule; -1 none open. */
 int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
                       float cy);
 /* Where to stand before setting off: (dx, dy) mm from (cx, cy) that puts a wall
- * within a hallway's width (2 x wall_target_mm) at wall_target_mm, or the
- * robot between two such walls, along each of the two square axes. */
+ * straight across an axis, within a hallway's width of the body's side
+ * (2 x wall_target_mm + body_half_width_mm), at wall_target_mm, or the robot
+ * midway between two such walls, along each of the two square axes. */
 void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
                        float *dx, float *dy);
 /* Record one tick's hits (the sweep). */

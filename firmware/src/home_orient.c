@@ -13,8 +13,10 @@
  *   began, tells how far is free in each of the four directions square to
  *   the walls.
  *
- * If a wall within a hallway's width (2 x wall_target_mm) of it is not at
- * wall_target_mm (or the robot is not midway between two such walls), it
+ * If a wall straight across one of the square axes, within a hallway's
+ * width of the body's side (2 x wall_target_mm + body_half_width_mm from its
+ * centre), is not at wall_target_mm (or the robot is not midway between two
+ * such walls), it
  * first moves square to the walls to stand there (SHIFT_TOL_MM of slack), as
  * the wall following will want: the home circle is wider than the room a
  * hallway leaves beside the body. The route's first direction is then the
@@ -37,6 +39,9 @@
 #define BAND_MARGIN_MM 30.0f /* the body's path: its half width plus this each side      */
 #define SHIFT_TOL_MM 40.0f   /* a shift shorter than this is not made                    */
 #define QUICK_TOL_DEG 2.0f
+/* where to stand goes by walls straight across each axis (a band this wide
+ * each side), not by a wall's end off to the side at a junction */
+#define CENTRE_BAND_MM 40.0f
 
 enum { PH_SWEEP = 0, PH_SHIFT_TURN = 1, PH_SHIFT_DRIVE = 2, PH_TURN = 3, PH_DONE = 4 };
 
@@ -139,10 +144,9 @@ float ffr_orient_square(const ffr_home_orient_t *o)
     return 0.25f * ffr_atan2f(o->s4, o->c4);
 }
 
-float ffr_orient_free_mm(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir, float cx, float cy)
+float ffr_orient_free_mm(const ffr_home_orient_t *o, float band, float dir, float cx, float cy)
 {
     float ux = ffr_cosf(dir), uy = ffr_sinf(dir);
-    float band = cfg->body_half_width_mm + BAND_MARGIN_MM;
     float best = 65535.0f;
     int b;
     for (b = 0; b < FFR_ORIENT_BINS; ++b) {
@@ -169,7 +173,7 @@ int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float
     int best_score = -1;
     float best_turn = 0.0f;
     for (k = 0; k < 4; ++k) {
-        free_mm[k] = ffr_orient_free_mm(o, cfg, dir0 + (float)k * 0.5f * FFR_PI, cx, cy);
+        free_mm[k] = ffr_orient_free_mm(o, cfg->body_half_width_mm + BAND_MARGIN_MM, dir0 + (float)k * 0.5f * FFR_PI, cx, cy);
     }
     for (k = 0; k < 4; ++k) {
         int left_wall = free_mm[(k + 1) & 3] < cfg->open_mm;
@@ -198,14 +202,14 @@ int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float
 void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
                        float *dx, float *dy)
 {
-    float near = 2.0f * cfg->wall_target_mm;
+    float near = 2.0f * cfg->wall_target_mm + cfg->body_half_width_mm;
     int k;
     *dx = 0.0f;
     *dy = 0.0f;
     for (k = 0; k < 2; ++k) {
         float dir = dir0 + (float)k * 0.5f * FFR_PI;
-        float a = ffr_orient_free_mm(o, cfg, dir, cx, cy);
-        float b = ffr_orient_free_mm(o, cfg, dir + FFR_PI, cx, cy);
+        float a = ffr_orient_free_mm(o, CENTRE_BAND_MM, dir, cx, cy);
+        float b = ffr_orient_free_mm(o, CENTRE_BAND_MM, dir + FFR_PI, cx, cy);
         float s = 0.0f; /* along dir */
         if (a < near && b < near) {
             s = 0.5f * (a - b);

@@ -82,11 +82,11 @@ static void the_open_end_and_the_walls_around(void)
     ffr_config_default(&cfg);
     sweep(&o, &cfg, &w, 0.0f, 0.0f, 1.0f, 100.0f * FFR_DEG, rot);
     /* ahead (+x in the world: rot in odometry's frame) the end wall, 250 mm */
-    CHECK_NEAR(ffr_orient_free_mm(&o, &cfg, rot, 0.0f, 0.0f), 250.0f, 10.0f);
-    CHECK_NEAR(ffr_orient_free_mm(&o, &cfg, rot + 0.5f * PI_F, 0.0f, 0.0f), 230.0f, 10.0f);
-    CHECK_NEAR(ffr_orient_free_mm(&o, &cfg, rot - 0.5f * PI_F, 0.0f, 0.0f), 230.0f, 10.0f);
+    CHECK_NEAR(ffr_orient_free_mm(&o, 130.0f, rot, 0.0f, 0.0f), 250.0f, 10.0f);
+    CHECK_NEAR(ffr_orient_free_mm(&o, 130.0f, rot + 0.5f * PI_F, 0.0f, 0.0f), 230.0f, 10.0f);
+    CHECK_NEAR(ffr_orient_free_mm(&o, 130.0f, rot - 0.5f * PI_F, 0.0f, 0.0f), 230.0f, 10.0f);
     /* behind: the open hallway, nothing seen */
-    CHECK(ffr_orient_free_mm(&o, &cfg, rot + PI_F, 0.0f, 0.0f) > 800.0f);
+    CHECK(ffr_orient_free_mm(&o, 130.0f, rot + PI_F, 0.0f, 0.0f) > 800.0f);
     /* the only open way is back down the hallway, walls close both sides:
      * every rule picks it (k = 2: rot + 180 degrees) */
     cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
