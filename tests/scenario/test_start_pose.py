@@ -14,10 +14,10 @@ import math
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
+from start_sweep import start_poses, turn_radius_m
 
 from harness.scenario import make_scenario
 from sim_plant.arena import load_arena
-from start_sweep import start_poses, turn_radius_m
 
 ARENA = load_arena()
 HEADINGS = 24
