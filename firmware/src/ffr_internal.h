@@ -170,8 +170,8 @@ int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float
                       float cy);
 /* Where to stand before setting off: (dx, dy) mm from (cx, cy) that puts a wall
  * straight across an axis, within a hallway's width of the body's side
- * (2 x wall_target_mm + body_half_width_mm), at wall_target_mm, or the robot
- * midway between two such walls, along each of the two square axes. */
+ * (2 x wall_target_mm + body_half_width_mm), at wall_target_mm (the nearer
+ * of two), along each of the two square axes. */
 void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
                        float *dx, float *dy);
 /* Record one tick's hits (the sweep). */

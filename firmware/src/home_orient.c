@@ -15,13 +15,12 @@
  *
  * If a wall straight across one of the square axes, within a hallway's
  * width of the body's side (2 x wall_target_mm + body_half_width_mm from its
- * centre), is not at wall_target_mm (or the robot is not midway between two
- * such walls), it
+ * centre), is not at wall_target_mm (the nearer of two), it
  * first moves square to the walls to stand there (SHIFT_TOL_MM of slack), as
  * the wall following will want: the home circle is wider than the room a
  * hallway leaves beside the body. The route's first direction is then the
- * one with open floor ahead for the body (no wall within open_mm in a band
- * of its width) and a wall close on the configured side
+ * one with open floor ahead for the body (no wall within a hallway's width
+ * in a band of its width) and a wall close on the configured side
  * (home_wall_side; "any": walls close on the most sides, i.e. along a
  * hallway); ties go to the smaller turn. The robot turns to it, and
  * odometry's frame is turned so that this direction is heading 0, square to
@@ -180,8 +179,8 @@ int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float
         int right_wall = free_mm[(k + 3) & 3] < cfg->open_mm;
         int score;
         float turn = ffr_absf(ffr_wrap_pi(dir0 + (float)k * 0.5f * FFR_PI - heading));
-        if (free_mm[k] < cfg->open_mm) {
-            continue; /* a wall ahead: not the way out */
+        if (free_mm[k] < 2.0f * cfg->wall_target_mm + cfg->body_half_width_mm) {
+            continue; /* a wall within a hallway's width ahead: not the way out */
         }
         if (cfg->home_wall_side == FFR_HOME_WALL_LEFT) {
             score = left_wall;
@@ -210,10 +209,9 @@ void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, floa
         float dir = dir0 + (float)k * 0.5f * FFR_PI;
         float a = ffr_orient_free_mm(o, CENTRE_BAND_MM, dir, cx, cy);
         float b = ffr_orient_free_mm(o, CENTRE_BAND_MM, dir + FFR_PI, cx, cy);
-        float s = 0.0f; /* along dir */
-        if (a < near && b < near) {
-            s = 0.5f * (a - b);
-        } else if (a < near) {
+        float s = 0.0f; /* along dir: the nearer wall at wall_target_mm (in a contest
+                         * hallway that is its middle; a far wall may be a wall's end) */
+        if (a < near && a <= b) {
             s = a - cfg->wall_target_mm;
         } else if (b < near) {
             s = cfg->wall_target_mm - b;

@@ -145,10 +145,10 @@ static void the_route_direction_by_the_wall_side_rule(void)
     ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
     CHECK_NEAR(dx, 310.0f - cfg.wall_target_mm, 15.0f);
     CHECK_NEAR(dy, 0.0f, 15.0f);
-    /* between two walls within a hallway's width: midway */
+    /* two walls across an axis: the nearer one at wall_target_mm */
     add_wall(&o, -150.0f, 0.0f, 0.0f, 1.0f);
     ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
-    CHECK_NEAR(dx, 80.0f, 15.0f);
+    CHECK_NEAR(dx, cfg.wall_target_mm - 150.0f, 15.0f);
     /* all four ways shut: none is open */
     add_wall(&o, 0.0f, 300.0f, 1.0f, 0.0f);
     cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
