@@ -217,6 +217,9 @@ typedef struct {
     float dist_mm;                 /* path length of the origin               */
     float v_mm_s[2];               /* filtered wheel speeds                   */
     float dpos_mm[2];              /* wheel travel in the last tick           */
+    float turn_scale;              /* learned: true rotation per odometry's raw rotation (turn_calibration.c) */
+    float rot_raw_rad;             /* raw rotation since the walls last told the heading */
+    float turn_w;                  /* what taught the scale so far: sum of rotation^2 (rad^2) */
 } ffr_odometry_t;
 
 typedef struct {

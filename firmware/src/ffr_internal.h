@@ -127,6 +127,12 @@ ffr_wall_case_t ffr_wall_case_sensed(const ffr_config_t *cfg, const float ir_mm[
 /* Degrees to turn (+ left) for a case; prefer = FFR_SIDE_LEFT/RIGHT/NONE. */
 int16_t ffr_wall_case_turn(ffr_wall_case_t c, uint8_t prefer);
 
+/* turn_calibration.c: odometry's turn scale learned from the walls. `err` is
+ * what a wall just showed odometry's heading to be off (rad, + = too far
+ * counter-clockwise); with enough rotation since the last such fix, the
+ * scale moves toward the one that explains it. Resets the rotation count. */
+void ffr_turn_cal_learn(ffr_odometry_t *o, float err);
+
 /* turn.c: turning in place by odometry. */
 float ffr_turn_yaw(const ffr_config_t *cfg, float heading, float target);
 int ffr_turn_done(const ffr_config_t *cfg, const ffr_odometry_t *o, float target);

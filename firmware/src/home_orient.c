@@ -236,6 +236,9 @@ static void reframe(ffr_odometry_t *odo, float rot)
     odo->x_mm = c * x + s * y;
     odo->y_mm = -s * x + c * y;
     odo->heading_rad -= rot;
+    /* the sweep's heading error is the walls' direction measured, not the
+     * turn scale's doing: turn_calibration.c counts rotation from here */
+    odo->rot_raw_rad = 0.0f;
 }
 
 /* the unwrapped heading nearest `heading` that points along `dir` */

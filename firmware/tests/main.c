@@ -18,6 +18,7 @@ int main(void)
     suite_layout();
     suite_robustness();
     suite_home_orient();
+    suite_turn_calibration();
     printf("firmware: %d passed, %d failed\n", unit_tally.passed, unit_tally.failed);
     return unit_tally.failed == 0 ? 0 : 1;
 }
