@@ -170,6 +170,8 @@ int ffr_orient_step(ffr_state_t *st);
  * side from (cx, cy), mm from the sweep's centre (65535: nothing seen). */
 float ffr_orient_square(const ffr_home_orient_t *o);
 float ffr_orient_free_mm(const ffr_home_orient_t *o, float band_mm, float dir, float cx, float cy);
+/* The same toward dir0 + k * 90 degrees, k = 0..3, in one pass. */
+void ffr_orient_free4(const ffr_home_orient_t *o, float band_mm, float dir0, float cx, float cy, float free_mm[4]);
 /* The route's first direction: k (0..3) of the four directions square to
  * the walls, dir0 + k * 90 degrees, by the home_wall_side rule; -1 none open. */
 int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,

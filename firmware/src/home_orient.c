@@ -42,7 +42,7 @@
  * each side), not by a wall's end off to the side at a junction */
 #define CENTRE_BAND_MM 40.0f
 
-enum { PH_SWEEP = 0, PH_SHIFT_TURN = 1, PH_SHIFT_DRIVE = 2, PH_TURN = 3, PH_DONE = 4 };
+enum { PH_SWEEP = 0, PH_SHIFT_TURN = 1, PH_SHIFT_DRIVE = 2, PH_AIM = 3, PH_TURN = 4, PH_DONE = 5 };
 
 static const float k_bin_rad = 2.0f * FFR_PI / (float)FFR_ORIENT_BINS;
 
@@ -164,6 +164,41 @@ float ffr_orient_free_mm(const ffr_home_orient_t *o, float band, float dir, floa
     return best;
 }
 
+void ffr_orient_free4(const ffr_home_orient_t *o, float band, float dir0, float cx, float cy, float free_mm[4])
+{
+    /* one pass, the points turned into the walls' frame once (a tick's
+     * budget: four passes with their own trigonometry cost twice it) */
+    float c = ffr_cosf(dir0), s = ffr_sinf(dir0);
+    int b, k;
+    for (k = 0; k < 4; ++k) {
+        free_mm[k] = 65535.0f;
+    }
+    for (b = 0; b < FFR_ORIENT_BINS; ++b) {
+        float qx, qy, u, v;
+        if (o->bin_mm[b] == BIN_NONE) {
+            continue;
+        }
+        qx = o->bin_x_mm[b] - cx;
+        qy = o->bin_y_mm[b] - cy;
+        u = qx * c + qy * s;  /* along dir0      */
+        v = qy * c - qx * s;  /* along dir0 + 90 */
+        if (ffr_absf(v) < band) {
+            if (u > 0.0f && u < free_mm[0]) {
+                free_mm[0] = u;
+            } else if (u < 0.0f && -u < free_mm[2]) {
+                free_mm[2] = -u;
+            }
+        }
+        if (ffr_absf(u) < band) {
+            if (v > 0.0f && v < free_mm[1]) {
+                free_mm[1] = v;
+            } else if (v < 0.0f && -v < free_mm[3]) {
+                free_mm[3] = -v;
+            }
+        }
+    }
+}
+
 int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
                       float cy)
 {
@@ -171,9 +206,7 @@ int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float
     int k, best = -1;
     int best_score = -1;
     float best_turn = 0.0f;
-    for (k = 0; k < 4; ++k) {
-        free_mm[k] = ffr_orient_free_mm(o, cfg->body_half_width_mm + BAND_MARGIN_MM, dir0 + (float)k * 0.5f * FFR_PI, cx, cy);
-    }
+    ffr_orient_free4(o, cfg->body_half_width_mm + BAND_MARGIN_MM, dir0, cx, cy, free_mm);
     for (k = 0; k < 4; ++k) {
         int left_wall = free_mm[(k + 1) & 3] < cfg->open_mm;
         int right_wall = free_mm[(k + 3) & 3] < cfg->open_mm;
@@ -202,13 +235,15 @@ void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, floa
                        float *dx, float *dy)
 {
     float near = 2.0f * cfg->wall_target_mm + cfg->body_half_width_mm;
+    float free_mm[4];
     int k;
     *dx = 0.0f;
     *dy = 0.0f;
+    float c0 = ffr_cosf(dir0), s0 = ffr_sinf(dir0);
+    ffr_orient_free4(o, CENTRE_BAND_MM, dir0, cx, cy, free_mm);
     for (k = 0; k < 2; ++k) {
-        float dir = dir0 + (float)k * 0.5f * FFR_PI;
-        float a = ffr_orient_free_mm(o, CENTRE_BAND_MM, dir, cx, cy);
-        float b = ffr_orient_free_mm(o, CENTRE_BAND_MM, dir + FFR_PI, cx, cy);
+        float a = free_mm[k];
+        float b = free_mm[k + 2];
         float s = 0.0f; /* along dir: the nearer wall at wall_target_mm (in a contest
                          * hallway that is its middle; a far wall may be a wall's end) */
         if (a < near && a <= b) {
@@ -216,8 +251,8 @@ void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, floa
         } else if (b < near) {
             s = cfg->wall_target_mm - b;
         }
-        *dx += s * ffr_cosf(dir);
-        *dy += s * ffr_sinf(dir);
+        *dx += s * (k == 0 ? c0 : -s0);
+        *dy += s * (k == 0 ? s0 : c0);
     }
 }
 
@@ -317,9 +352,10 @@ int ffr_orient_step(ffr_state_t *st)
                 o->goal_mm = ffr_sqrtf(dx * dx + dy * dy);
                 o->phase = PH_SHIFT_TURN;
             } else {
-                aim(st);
+                o->phase = PH_AIM; /* next tick: one tick's budget for each decision */
             }
         }
+        return 0;
     }
     if (o->phase == PH_SHIFT_TURN) {
         if (!quick_turn(st, o->target_rad)) {
@@ -338,6 +374,10 @@ int ffr_orient_step(ffr_state_t *st)
             return 0;
         }
         ffr_stop(st);
+        o->phase = PH_AIM;
+        return 0;
+    }
+    if (o->phase == PH_AIM) {
         aim(st);
     }
     if (o->phase == PH_TURN) {

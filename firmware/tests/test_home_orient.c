@@ -87,6 +87,19 @@ static void the_open_end_and_the_walls_around(void)
     CHECK_NEAR(ffr_orient_free_mm(&o, 130.0f, rot - 0.5f * PI_F, 0.0f, 0.0f), 230.0f, 10.0f);
     /* behind: the open hallway, nothing seen */
     CHECK(ffr_orient_free_mm(&o, 130.0f, rot + PI_F, 0.0f, 0.0f) > 800.0f);
+    /* the four at once: the same, from anywhere */
+    {
+        float f4[4];
+        int k;
+        for (k = 0; k < 4; ++k) {
+            float cx = 30.0f * (float)(k - 1), cy = -20.0f * (float)k;
+            int j;
+            ffr_orient_free4(&o, 130.0f, rot, cx, cy, f4);
+            for (j = 0; j < 4; ++j) {
+                CHECK_NEAR(f4[j], ffr_orient_free_mm(&o, 130.0f, rot + (float)j * 0.5f * PI_F, cx, cy), 0.5f);
+            }
+        }
+    }
     /* the only open way is back down the hallway, walls close both sides:
      * every rule picks it (k = 2: rot + 180 degrees) */
     cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
