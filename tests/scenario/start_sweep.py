@@ -72,16 +72,16 @@ def calibration_overrides(wheel: float, track: float) -> tuple[dict[str, float],
 
 
 def replay(scn: Scenario) -> str:
+    """The failing mission as a command line; the start pose goes in a scenario file's [start]."""
     x, y, h = scn.start
     cmd = f"ffr run --room {scn.room} --seed {scn.seed}"
     if scn.noise.name != "none":
         cmd += f" --noise {scn.noise.name}"
-    cmd += f" [start] x={x:.4f} y={y:.4f} heading_deg={math.degrees(h):.2f}"
     for k, v in scn.robot_overrides.items():
         cmd += f" --set robot.{k}={v:.5f}"
     for k, v in scn.firmware.items():
         cmd += f" --set firmware.{k}={v:.3f}"
-    return cmd
+    return cmd + f"  # [start] x = {x:.4f}, y = {y:.4f}, heading_deg = {math.degrees(h):.2f}"
 
 
 def ok(res) -> bool:
