@@ -328,7 +328,7 @@ typedef struct {
  * stretches of one ranger's hits, and the nearest hit per direction bin. */
 #define FFR_ORIENT_BINS 36         /* 10 degrees each                         */
 typedef struct {
-    uint8_t phase;                 /* sweep, shift turn, shift drive, aim, turn, done */
+    uint8_t phase;                 /* sweep, centre, shift turn, shift drive, aim, turn, done */
     uint8_t anchor_ok[FFR_IR_COUNT];
     uint8_t reverse;               /* the shift is driven backwards           */
     uint8_t reserved;

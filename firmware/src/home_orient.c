@@ -42,7 +42,7 @@
  * each side), not by a wall's end off to the side at a junction */
 #define CENTRE_BAND_MM 40.0f
 
-enum { PH_SWEEP = 0, PH_SHIFT_TURN = 1, PH_SHIFT_DRIVE = 2, PH_AIM = 3, PH_TURN = 4, PH_DONE = 5 };
+enum { PH_SWEEP = 0, PH_CENTRE = 1, PH_SHIFT_TURN = 2, PH_SHIFT_DRIVE = 3, PH_AIM = 4, PH_TURN = 5, PH_DONE = 6 };
 
 static const float k_bin_rad = 2.0f * FFR_PI / (float)FFR_ORIENT_BINS;
 
@@ -104,9 +104,10 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
         /* the hit in odometry's frame, relative to the sweep's centre */
         px = odo->x_mm + c * g->hit_x_mm[i] - s * g->hit_y_mm[i] - o->x0_mm;
         py = odo->y_mm + s * g->hit_x_mm[i] + c * g->hit_y_mm[i] - o->y0_mm;
-        r = ffr_sqrtf(px * px + py * py);
         b = bin_of(ffr_atan2f(py, px));
-        if (r < (float)o->bin_mm[b]) {
+        r = px * px + py * py; /* squared: the root only for a new nearest */
+        if (r < (float)o->bin_mm[b] * (float)o->bin_mm[b]) {
+            r = ffr_sqrtf(r);
             o->bin_mm[b] = (uint16_t)(r < 65534.0f ? r : 65534.0f);
             o->bin_x_mm[b] = px;
             o->bin_y_mm[b] = py;
@@ -128,9 +129,13 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
             continue;
         }
         if (len <= SEG_MAX_MM) {
-            float a4 = 4.0f * ffr_atan2f(dy, dx);
-            o->c4 += len * ffr_cosf(a4);
-            o->s4 += len * ffr_sinf(a4);
+            /* (cos, sin) of 4 x the direction without trigonometry: the unit
+             * vector squared twice as a complex number (a tick's budget on a
+             * soft-float core) */
+            float u = dx / len, v = dy / len;
+            float c2 = u * u - v * v, s2 = 2.0f * u * v;
+            o->c4 += len * (c2 * c2 - s2 * s2);
+            o->s4 += len * (2.0f * c2 * s2);
             o->w += len;
         }
         o->anchor_x_mm[i] = px;
@@ -340,20 +345,24 @@ int ffr_orient_step(ffr_state_t *st)
             o->target_rad = o->h0_rad;
             o->phase = PH_TURN;
         } else {
-            float dx, dy, cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
             o->dir0_rad = ffr_orient_square(o);
-            ffr_orient_centre(o, cfg, o->dir0_rad, cx, cy, &dx, &dy);
-            if (dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
-                float dir = ffr_atan2f(dy, dx);
-                float fwd = nearest(st->odo.heading_rad, dir);
-                float back = nearest(st->odo.heading_rad, dir + FFR_PI);
-                o->reverse = ffr_absf(back - st->odo.heading_rad) < ffr_absf(fwd - st->odo.heading_rad);
-                o->target_rad = o->reverse ? back : fwd;
-                o->goal_mm = ffr_sqrtf(dx * dx + dy * dy);
-                o->phase = PH_SHIFT_TURN;
-            } else {
-                o->phase = PH_AIM; /* next tick: one tick's budget for each decision */
-            }
+            o->phase = PH_CENTRE; /* next tick: one tick's budget for each decision */
+        }
+        return 0;
+    }
+    if (o->phase == PH_CENTRE) {
+        float dx, dy, cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
+        ffr_orient_centre(o, cfg, o->dir0_rad, cx, cy, &dx, &dy);
+        if (dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
+            float dir = ffr_atan2f(dy, dx);
+            float fwd = nearest(st->odo.heading_rad, dir);
+            float back = nearest(st->odo.heading_rad, dir + FFR_PI);
+            o->reverse = ffr_absf(back - st->odo.heading_rad) < ffr_absf(fwd - st->odo.heading_rad);
+            o->target_rad = o->reverse ? back : fwd;
+            o->goal_mm = ffr_sqrtf(dx * dx + dy * dy);
+            o->phase = PH_SHIFT_TURN;
+        } else {
+            o->phase = PH_AIM;
         }
         return 0;
     }
