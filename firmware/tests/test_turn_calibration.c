@@ -53,9 +53,13 @@ static void small_turns_and_large_errors_teach_nothing(void)
     ffr_turn_cal_learn(&o, 30.0f * FFR_DEG);
     CHECK_NEAR(o.turn_scale, 1.0f, 0.0f);
     CHECK_NEAR(o.rot_raw_rad, 0.0f, 0.0f);
+    /* an error within the wall measurement's noise (0.5 degrees) teaches nothing */
+    o.rot_raw_rad = 90.0f * FFR_DEG;
+    ffr_turn_cal_learn(&o, 0.4f * FFR_DEG);
+    CHECK_NEAR(o.turn_scale, 1.0f, 0.0f);
     /* one good fix moves it most of the way */
     ffr_turn_cal_learn(&o, turn_and_fix(&o, 1.06f, 90.0f * FFR_DEG));
-    CHECK(o.turn_scale > 1.04f && o.turn_scale < 1.06f);
+    CHECK(o.turn_scale > 1.03f && o.turn_scale < 1.06f);
     /* odometry applies it: a turn in place counted raw x scale */
     {
         ffr_config_t cfg;
