@@ -25,7 +25,7 @@ TYPE_CODES = {1: "u1", 2: "i2", 3: "u2", 4: "i4", 5: "u4", 6: "f4", 0: "step"}
 
 STATE_NAMES = (
     "IDLE", "FOLLOW", "TURN", "FORWARD", "ENTER", "SCAN", "APPROACH", "EXTINGUISH",
-    "VERIFY", "TO_DOOR", "EXIT", "HOMING", "DONE", "FAILED",
+    "VERIFY", "TO_DOOR", "EXIT", "HOMING", "DONE", "FAILED", "ORIENT",
 )
 ST_DONE = STATE_NAMES.index("DONE")
 ST_FAILED = STATE_NAMES.index("FAILED")
@@ -76,11 +76,11 @@ CONFIG_FIELDS: _F = (
     + [("pwm_limit", "i2", 1), ("reserved0", "i2", 1)]
     + [(n, "f4", 1) for n in _CFG_FLOATS_C]
     + [("fan_timeout_ms", "u4", 1), ("flame_out_confirm_ms", "u4", 1), ("verify_ms", "u4", 1),
-       ("fan_attempts", "u1", 1), ("scan_dir", "u1", 1), ("route_len", "u1", 1), ("reserved1", "u1", 1),
+       ("fan_attempts", "u1", 1), ("scan_dir", "u1", 1), ("route_len", "u1", 1), ("home_wall_side", "u1", 1),
        ("route", "step", ROUTE_MAX), ("return_start", "u1", ROOMS_MAX)]
 )
 # Config fields a scenario may not set directly (structure, not tuning).
-CONFIG_PRIVATE = {"reserved0", "reserved1", "route", "route_len", "return_start"}
+CONFIG_PRIVATE = {"reserved0", "route", "route_len", "return_start"}
 
 
 def _dtype(fields: _F) -> np.dtype:

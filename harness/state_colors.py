@@ -7,5 +7,6 @@ STATE_COLORS: dict[str, str] = {
     "IDLE": "#aaaaaa", "FOLLOW": "#1f77b4", "TURN": "#9467bd", "FORWARD": "#17becf", "ENTER": "#2ca02c",
     "SCAN": "#bcbd22", "APPROACH": "#ff7f0e", "EXTINGUISH": "#d62728", "VERIFY": "#8c564b",
     "TO_DOOR": "#e377c2", "EXIT": "#7f7f7f", "HOMING": "#393b79", "DONE": "#ffffff", "FAILED": "#ff0000",
+    "ORIENT": "#f7b6d2",
 }
 UNKNOWN_STATE_COLOR = "#ffffff"  # a library with states of its own (docs/architecture.md, ABI check)

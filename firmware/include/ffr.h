@@ -64,6 +64,9 @@ typedef struct {
 } ffr_step_t;
 
 #define FFR_ROUTE_MAX 48
+
+/* ffr_config_t.home_wall_side */
+enum { FFR_HOME_WALL_LEFT = 0, FFR_HOME_WALL_RIGHT = 1, FFR_HOME_WALL_ANY = 2, FFR_HOME_AS_PLACED = 3 };
 #define FFR_ROOMS_MAX 4
 
 /* ------------------------------------------------------------------ */
@@ -139,7 +142,11 @@ typedef struct {
     uint8_t fan_attempts;
     uint8_t scan_dir;            /* 0 = counter-clockwise, 1 = clockwise       */
     uint8_t route_len;
-    uint8_t reserved1;
+    uint8_t home_wall_side;      /* the route's first direction, from home (home_orient.c):
+                                  * open ahead with a wall close on this side:
+                                  * FFR_HOME_WALL_LEFT/RIGHT; FFR_HOME_WALL_ANY: walls on
+                                  * the most sides; FFR_HOME_AS_PLACED: no orientation,
+                                  * the robot is placed facing it */
 
     ffr_step_t route[FFR_ROUTE_MAX];
     uint8_t return_start[FFR_ROOMS_MAX]; /* route index of the way home from room k+1 */
@@ -173,7 +180,8 @@ typedef enum {
     FFR_ST_HOMING = 11,
     FFR_ST_DONE = 12,
     FFR_ST_FAILED = 13,
-    FFR_ST_COUNT = 14
+    FFR_ST_ORIENT = 14, /* at home: a turn in place to learn which way it faces (home_orient.c) */
+    FFR_ST_COUNT = 15
 } ffr_state_code_t;
 
 #define FFR_FLAG_FLAME_SEEN 0x01u
@@ -209,6 +217,9 @@ typedef struct {
     float dist_mm;                 /* path length of the origin               */
     float v_mm_s[2];               /* filtered wheel speeds                   */
     float dpos_mm[2];              /* wheel travel in the last tick           */
+    float turn_scale;              /* learned: true rotation per odometry's raw rotation (turn_calibration.c) */
+    float rot_raw_rad;             /* raw rotation since the walls last told the heading */
+    float turn_w;                  /* what taught the scale so far: sum of rotation^2 (rad^2) */
 } ffr_odometry_t;
 
 typedef struct {
@@ -312,6 +323,27 @@ typedef struct {
     float hit_y_mm[FFR_IR_COUNT];
 } ffr_ir_geom_t;
 
+/* Orientation at home (home_orient.c): a turn in place, every ranger's hits
+ * in odometry's frame; the walls' direction (mod 90 degrees) from short
+ * stretches of one ranger's hits, and the nearest hit per direction bin. */
+#define FFR_ORIENT_BINS 36         /* 10 degrees each                         */
+typedef struct {
+    uint8_t phase;                 /* sweep, centre, shift turn, shift drive, aim, turn, done */
+    uint8_t anchor_ok[FFR_IR_COUNT];
+    uint8_t reverse;               /* the shift is driven backwards           */
+    uint8_t reserved;
+    float x0_mm, y0_mm, h0_rad;    /* odometry pose where the sweep began     */
+    float dir0_rad;                /* the walls' direction (odometry), mod 90 degrees */
+    float target_rad;              /* heading of the current turn             */
+    float goal_mm;                 /* odometry distance where the shift ends  */
+    float anchor_x_mm[FFR_IR_COUNT];
+    float anchor_y_mm[FFR_IR_COUNT];
+    float c4, s4, w;               /* sum of len * (cos, sin)(4 * segment direction), sum of len */
+    uint16_t bin_mm[FFR_ORIENT_BINS]; /* nearest hit from the sweep's centre per bin (0xFFFF none) */
+    float bin_x_mm[FFR_ORIENT_BINS];  /* and where it is, from the sweep's centre */
+    float bin_y_mm[FFR_ORIENT_BINS];
+} ffr_home_orient_t;
+
 typedef struct {
     ffr_config_t cfg;
     ffr_odometry_t odo;
@@ -321,6 +353,7 @@ typedef struct {
     ffr_route_state_t route;
     ffr_wall_cal_t wall_cal;
     ffr_room_state_t room;
+    ffr_home_orient_t orient;
     float ir_mm[FFR_IR_COUNT];     /* last calibrated ranges (ir_max_mm+1 = none) */
     ffr_ir_geom_t ir_geom;         /* and their hit points                    */
     uint32_t t_ms;

@@ -166,6 +166,8 @@ void ffr_config_default(ffr_config_t *c)
     c->verify_ms = 500u;
     c->fan_attempts = 3u;
     c->scan_dir = 0u;
+    /* the 2004 arena's home: open up the east hallway, its outer wall on the right */
+    c->home_wall_side = FFR_HOME_WALL_RIGHT;
 
     default_route(c);
 }

@@ -49,6 +49,9 @@ static void true_up_heading(ffr_state_t *st)
         return;
     }
     err = ffr_off_square(dir);
+    if (ffr_absf(err) < SNAP_MAX_DEG * FFR_DEG) {
+        ffr_turn_cal_learn(&st->odo, err);
+    }
     corr = 0.0f;
     if (ffr_absf(err) < SNAP_MAX_DEG * FFR_DEG) {
         float dead = SNAP_DEAD_DEG * FFR_DEG;

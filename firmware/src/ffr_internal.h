@@ -127,6 +127,12 @@ ffr_wall_case_t ffr_wall_case_sensed(const ffr_config_t *cfg, const float ir_mm[
 /* Degrees to turn (+ left) for a case; prefer = FFR_SIDE_LEFT/RIGHT/NONE. */
 int16_t ffr_wall_case_turn(ffr_wall_case_t c, uint8_t prefer);
 
+/* turn_calibration.c: odometry's turn scale learned from the walls. `err` is
+ * what a wall just showed odometry's heading to be off (rad, + = too far
+ * counter-clockwise); with enough rotation since the last such fix, the
+ * scale moves toward the one that explains it. Resets the rotation count. */
+void ffr_turn_cal_learn(ffr_odometry_t *o, float err);
+
 /* turn.c: turning in place by odometry. */
 float ffr_turn_yaw(const ffr_config_t *cfg, float heading, float target);
 int ffr_turn_done(const ffr_config_t *cfg, const ffr_odometry_t *o, float target);
@@ -153,6 +159,33 @@ void ffr_stop(ffr_state_t *st);
 /* Speed (mm/s) for `remaining_mm` to a stopping point: slows into the stop
  * so it is short, never below a crawl that still overcomes friction. */
 float ffr_stopping_speed(float remaining_mm, float top);
+
+/* home_orient.c: before the route, which way the robot faces at home. */
+void ffr_orient_begin(ffr_state_t *st);
+/* Returns 1 once the robot faces the route's first direction and odometry's
+ * frame is square to the walls with heading 0 along it. */
+int ffr_orient_step(ffr_state_t *st);
+/* The walls' direction (rad, in (-pi/4, pi/4]) from the segment sums, and the
+ * free distance (mm) toward `dir` (rad, odometry) in a band of band_mm each
+ * side from (cx, cy), mm from the sweep's centre (65535: nothing seen). */
+float ffr_orient_square(const ffr_home_orient_t *o);
+float ffr_orient_free_mm(const ffr_home_orient_t *o, float band_mm, float dir, float cx, float cy);
+/* The same toward dir0 + k * 90 degrees, k = 0..3, in one pass. */
+void ffr_orient_free4(const ffr_home_orient_t *o, float band_mm, float dir0, float cx, float cy, float free_mm[4]);
+/* The route's first direction: k (0..3) of the four directions square to
+ * the walls, dir0 + k * 90 degrees, by the home_wall_side rule; -1 none open. */
+int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
+                      float cy);
+/* Where to stand before setting off: (dx, dy) mm from (cx, cy) that puts a wall
+ * straight across an axis, within a hallway's width of the body's side
+ * (2 x wall_target_mm + body_half_width_mm), at wall_target_mm (the nearer
+ * of two), along each of the two square axes. */
+void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
+                       float *dx, float *dy);
+/* Record one tick's hits (the sweep). */
+void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_odometry_t *odo,
+                       const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT]);
+void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo);
 
 /* route.c: the route program interpreter. */
 void ffr_route_begin(ffr_state_t *st, uint8_t pc);

@@ -100,7 +100,7 @@ static const ffr_field_t k_layout[] = {
     CFG(fan_attempts, FFR_T_U8, 1),
     CFG(scan_dir, FFR_T_U8, 1),
     CFG(route_len, FFR_T_U8, 1),
-    CFG(reserved1, FFR_T_U8, 1),
+    CFG(home_wall_side, FFR_T_U8, 1),
     CFG(route, 0, FFR_ROUTE_MAX), /* type 0: an array of ffr_step_t */
     CFG(return_start, FFR_T_U8, FFR_ROOMS_MAX),
 };

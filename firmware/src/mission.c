@@ -33,6 +33,7 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->route.pc = 0;
     st->route.reserved[0] = st->route.reserved[1] = st->route.reserved[2] = st->route.reserved[3] = 0;
     ffr_wall_cal_reset(&st->wall_cal);
+    ffr_orient_reset(&st->orient, &st->odo);
     st->room.phase = 0;
     st->room.room = 0;
     st->room.attempts = 0;
@@ -119,11 +120,21 @@ void ffr_step(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out)
         ffr_stop(st);
         if (in->start) {
             st->started = 1;
-            st->route.heading_ref_rad = st->odo.heading_rad;
-            ffr_route_begin(st, 0);
+            if (cfg->home_wall_side == FFR_HOME_AS_PLACED) {
+                st->route.heading_ref_rad = st->odo.heading_rad;
+                ffr_route_begin(st, 0);
+            } else {
+                ffr_orient_begin(st);
+            }
         }
     }
-    if (st->started && st->state != FFR_ST_DONE && st->state != FFR_ST_FAILED) {
+    if (st->started && st->state == FFR_ST_ORIENT) {
+        if (ffr_orient_step(st)) {
+            /* odometry's frame now has the route's first direction at 0 */
+            st->route.heading_ref_rad = 0.0f;
+            ffr_route_begin(st, 0);
+        }
+    } else if (st->started && st->state != FFR_ST_DONE && st->state != FFR_ST_FAILED) {
         ffr_route_step(st, in);
     }
 

@@ -14,6 +14,9 @@ void ffr_odometry_reset(ffr_odometry_t *o)
     o->v_mm_s[1] = 0.0f;
     o->dpos_mm[0] = 0.0f;
     o->dpos_mm[1] = 0.0f;
+    o->turn_scale = 1.0f;
+    o->rot_raw_rad = 0.0f;
+    o->turn_w = 0.0f;
 }
 
 void ffr_odometry_update(ffr_odometry_t *o, const ffr_config_t *cfg, const int32_t enc[2], float dt_s)
@@ -38,6 +41,8 @@ void ffr_odometry_update(ffr_odometry_t *o, const ffr_config_t *cfg, const int32
     }
     ds = 0.5f * (o->dpos_mm[0] + o->dpos_mm[1]);
     dth = (o->dpos_mm[1] - o->dpos_mm[0]) / cfg->track_width_mm;
+    o->rot_raw_rad += dth;
+    dth *= o->turn_scale; /* the turn scale the walls taught (turn_calibration.c) */
     mid = o->heading_rad + 0.5f * dth;
     o->x_mm += ds * ffr_cosf(mid);
     o->y_mm += ds * ffr_sinf(mid);

@@ -17,6 +17,8 @@ int main(void)
     suite_mission();
     suite_layout();
     suite_robustness();
+    suite_home_orient();
+    suite_turn_calibration();
     printf("firmware: %d passed, %d failed\n", unit_tally.passed, unit_tally.failed);
     return unit_tally.failed == 0 ? 0 : 1;
 }

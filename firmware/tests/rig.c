@@ -19,6 +19,9 @@ void rig_init(rig_t *r, const ffr_config_t *cfg)
 {
     int i;
     ffr_init(&r->st, cfg);
+    /* the rig's hand-set rangers are not a room to orient in: the robot starts
+     * as placed (home_orient's own tests set it back after rig_init) */
+    r->st.cfg.home_wall_side = FFR_HOME_AS_PLACED;
     r->in.t_ms = 0;
     r->in.seq = 0;
     r->in.enc[0] = r->in.enc[1] = 0;

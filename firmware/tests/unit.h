@@ -45,4 +45,6 @@ void suite_openings(void);
 void suite_mission(void);
 void suite_layout(void);
 void suite_robustness(void);
+void suite_home_orient(void);
+void suite_turn_calibration(void);
 #endif

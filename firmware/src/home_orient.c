@@ -1,0 +1,401 @@
+/*
+ * Which way does the robot face at home? Before the route starts, it turns
+ * in place a little over a quarter turn (ORIENT_SWEEP_DEG, left). Its five
+ * rangers look ahead, 45 degrees and 135 degrees either side, so a quarter
+ * turn sweeps every direction at least once. Every valid hit is placed in
+ * odometry's frame and:
+ *
+ * - short stretches of one ranger's successive hits (40..120 mm apart) lie
+ *   along a wall: their direction, taken modulo 90 degrees (contest walls
+ *   meet at right angles), averaged over the sweep, is the walls' direction
+ *   in odometry's frame;
+ * - the nearest hit per 10-degree direction bin, seen from where the sweep
+ *   began, tells how far is free in each of the four directions square to
+ *   the walls.
+ *
+ * If a wall straight across one of the square axes, within a hallway's
+ * width of the body's side (2 x wall_target_mm + body_half_width_mm from its
+ * centre), is not at wall_target_mm (the nearer of two), it
+ * first moves square to the walls to stand there (SHIFT_TOL_MM of slack), as
+ * the wall following will want: the home circle is wider than the room a
+ * hallway leaves beside the body. The route's first direction is then the
+ * one with open floor ahead for the body (no wall within a hallway's width
+ * in a band of its width) and a wall close on the configured side
+ * (home_wall_side; "any": walls close on the most sides, i.e. along a
+ * hallway); ties go to the smaller turn. The robot turns to it, and
+ * odometry's frame is turned so that this direction is heading 0, square to
+ * the walls (wall_direction.c relies on that), as if placed facing it.
+ * Nothing of one map's distances: only "open ahead", "a wall close beside".
+ */
+#include "ffr_internal.h"
+
+#define ORIENT_SWEEP_DEG 95.0f
+#define SEG_MIN_MM 40.0f  /* a stretch of one ranger's hits: at least this long (noise)  */
+#define SEG_MAX_MM 120.0f /* at most this: longer is a jump to another wall              */
+#define SEG_RANGE_MM 350.0f /* hits farther than this are too noisy for a direction      */
+#define SEG_MIN_TOTAL_MM 150.0f /* less wall than this seen: keep the heading as placed  */
+#define BIN_NONE 0xFFFFu
+#define BAND_MARGIN_MM 30.0f /* the body's path: its half width plus this each side      */
+#define SHIFT_TOL_MM 40.0f   /* a shift shorter than this is not made                    */
+#define QUICK_TOL_DEG 2.0f
+/* where to stand goes by walls straight across each axis (a band this wide
+ * each side), not by a wall's end off to the side at a junction */
+#define CENTRE_BAND_MM 40.0f
+
+enum { PH_SWEEP = 0, PH_CENTRE = 1, PH_SHIFT_TURN = 2, PH_SHIFT_DRIVE = 3, PH_AIM = 4, PH_TURN = 5, PH_DONE = 6 };
+
+static const float k_bin_rad = 2.0f * FFR_PI / (float)FFR_ORIENT_BINS;
+
+void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
+{
+    int i;
+    o->phase = PH_SWEEP;
+    o->reverse = 0u;
+    o->reserved = 0u;
+    o->x0_mm = odo->x_mm;
+    o->y0_mm = odo->y_mm;
+    o->h0_rad = odo->heading_rad;
+    o->dir0_rad = 0.0f;
+    o->target_rad = odo->heading_rad;
+    o->goal_mm = 0.0f;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        o->anchor_ok[i] = 0u;
+        o->anchor_x_mm[i] = 0.0f;
+        o->anchor_y_mm[i] = 0.0f;
+    }
+    o->c4 = 0.0f;
+    o->s4 = 0.0f;
+    o->w = 0.0f;
+    for (i = 0; i < FFR_ORIENT_BINS; ++i) {
+        o->bin_mm[i] = (uint16_t)BIN_NONE;
+        o->bin_x_mm[i] = 0.0f;
+        o->bin_y_mm[i] = 0.0f;
+    }
+}
+
+/* bin of a direction (rad, any value) */
+static int bin_of(float dir)
+{
+    float a = dir;
+    int b;
+    while (a < 0.0f) {
+        a += 2.0f * FFR_PI;
+    }
+    while (a >= 2.0f * FFR_PI) {
+        a -= 2.0f * FFR_PI;
+    }
+    b = (int)(a / k_bin_rad);
+    return b >= FFR_ORIENT_BINS ? FFR_ORIENT_BINS - 1 : b;
+}
+
+void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_odometry_t *odo,
+                       const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT])
+{
+    float c = ffr_cosf(odo->heading_rad);
+    float s = ffr_sinf(odo->heading_rad);
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        float px, py, dx, dy, r, len;
+        int b;
+        if (!ffr_ir_valid(cfg, ir_mm[i])) {
+            o->anchor_ok[i] = 0u;
+            continue;
+        }
+        /* the hit in odometry's frame, relative to the sweep's centre */
+        px = odo->x_mm + c * g->hit_x_mm[i] - s * g->hit_y_mm[i] - o->x0_mm;
+        py = odo->y_mm + s * g->hit_x_mm[i] + c * g->hit_y_mm[i] - o->y0_mm;
+        b = bin_of(ffr_atan2f(py, px));
+        r = px * px + py * py; /* squared: the root only for a new nearest */
+        if (r < (float)o->bin_mm[b] * (float)o->bin_mm[b]) {
+            r = ffr_sqrtf(r);
+            o->bin_mm[b] = (uint16_t)(r < 65534.0f ? r : 65534.0f);
+            o->bin_x_mm[b] = px;
+            o->bin_y_mm[b] = py;
+        }
+        if (ir_mm[i] > SEG_RANGE_MM) {
+            o->anchor_ok[i] = 0u;
+            continue;
+        }
+        if (!o->anchor_ok[i]) {
+            o->anchor_ok[i] = 1u;
+            o->anchor_x_mm[i] = px;
+            o->anchor_y_mm[i] = py;
+            continue;
+        }
+        dx = px - o->anchor_x_mm[i];
+        dy = py - o->anchor_y_mm[i];
+        len = ffr_sqrtf(dx * dx + dy * dy);
+        if (len < SEG_MIN_MM) {
+            continue;
+        }
+        if (len <= SEG_MAX_MM) {
+            /* (cos, sin) of 4 x the direction without trigonometry: the unit
+             * vector squared twice as a complex number (a tick's budget on a
+             * soft-float core) */
+            float u = dx / len, v = dy / len;
+            float c2 = u * u - v * v, s2 = 2.0f * u * v;
+            o->c4 += len * (c2 * c2 - s2 * s2);
+            o->s4 += len * (2.0f * c2 * s2);
+            o->w += len;
+        }
+        o->anchor_x_mm[i] = px;
+        o->anchor_y_mm[i] = py;
+    }
+}
+
+float ffr_orient_square(const ffr_home_orient_t *o)
+{
+    return 0.25f * ffr_atan2f(o->s4, o->c4);
+}
+
+float ffr_orient_free_mm(const ffr_home_orient_t *o, float band, float dir, float cx, float cy)
+{
+    float ux = ffr_cosf(dir), uy = ffr_sinf(dir);
+    float best = 65535.0f;
+    int b;
+    for (b = 0; b < FFR_ORIENT_BINS; ++b) {
+        float qx, qy, along, lat;
+        if (o->bin_mm[b] == BIN_NONE) {
+            continue;
+        }
+        qx = o->bin_x_mm[b] - cx;
+        qy = o->bin_y_mm[b] - cy;
+        along = qx * ux + qy * uy;
+        lat = ffr_absf(qy * ux - qx * uy);
+        if (along > 0.0f && lat < band && along < best) {
+            best = along;
+        }
+    }
+    return best;
+}
+
+void ffr_orient_free4(const ffr_home_orient_t *o, float band, float dir0, float cx, float cy, float free_mm[4])
+{
+    /* one pass, the points turned into the walls' frame once (a tick's
+     * budget: four passes with their own trigonometry cost twice it) */
+    float c = ffr_cosf(dir0), s = ffr_sinf(dir0);
+    int b, k;
+    for (k = 0; k < 4; ++k) {
+        free_mm[k] = 65535.0f;
+    }
+    for (b = 0; b < FFR_ORIENT_BINS; ++b) {
+        float qx, qy, u, v;
+        if (o->bin_mm[b] == BIN_NONE) {
+            continue;
+        }
+        qx = o->bin_x_mm[b] - cx;
+        qy = o->bin_y_mm[b] - cy;
+        u = qx * c + qy * s;  /* along dir0      */
+        v = qy * c - qx * s;  /* along dir0 + 90 */
+        if (ffr_absf(v) < band) {
+            if (u > 0.0f && u < free_mm[0]) {
+                free_mm[0] = u;
+            } else if (u < 0.0f && -u < free_mm[2]) {
+                free_mm[2] = -u;
+            }
+        }
+        if (ffr_absf(u) < band) {
+            if (v > 0.0f && v < free_mm[1]) {
+                free_mm[1] = v;
+            } else if (v < 0.0f && -v < free_mm[3]) {
+                free_mm[3] = -v;
+            }
+        }
+    }
+}
+
+int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
+                      float cy)
+{
+    float free_mm[4];
+    int k, best = -1;
+    int best_score = -1;
+    float best_turn = 0.0f;
+    ffr_orient_free4(o, cfg->body_half_width_mm + BAND_MARGIN_MM, dir0, cx, cy, free_mm);
+    for (k = 0; k < 4; ++k) {
+        int left_wall = free_mm[(k + 1) & 3] < cfg->open_mm;
+        int right_wall = free_mm[(k + 3) & 3] < cfg->open_mm;
+        int score;
+        float turn = ffr_absf(ffr_wrap_pi(dir0 + (float)k * 0.5f * FFR_PI - heading));
+        if (free_mm[k] < 2.0f * cfg->wall_target_mm + cfg->body_half_width_mm) {
+            continue; /* a wall within a hallway's width ahead: not the way out */
+        }
+        if (cfg->home_wall_side == FFR_HOME_WALL_LEFT) {
+            score = left_wall;
+        } else if (cfg->home_wall_side == FFR_HOME_WALL_RIGHT) {
+            score = right_wall;
+        } else {
+            score = left_wall + right_wall;
+        }
+        if (score > best_score || (score == best_score && turn < best_turn)) {
+            best = k;
+            best_score = score;
+            best_turn = turn;
+        }
+    }
+    return best;
+}
+
+void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
+                       float *dx, float *dy)
+{
+    float near = 2.0f * cfg->wall_target_mm + cfg->body_half_width_mm;
+    float free_mm[4];
+    int k;
+    *dx = 0.0f;
+    *dy = 0.0f;
+    float c0 = ffr_cosf(dir0), s0 = ffr_sinf(dir0);
+    ffr_orient_free4(o, CENTRE_BAND_MM, dir0, cx, cy, free_mm);
+    for (k = 0; k < 2; ++k) {
+        float a = free_mm[k];
+        float b = free_mm[k + 2];
+        float s = 0.0f; /* along dir: the nearer wall at wall_target_mm (in a contest
+                         * hallway that is its middle; a far wall may be a wall's end) */
+        if (a < near && a <= b) {
+            s = a - cfg->wall_target_mm;
+        } else if (b < near) {
+            s = cfg->wall_target_mm - b;
+        }
+        *dx += s * (k == 0 ? c0 : -s0);
+        *dy += s * (k == 0 ? s0 : c0);
+    }
+}
+
+void ffr_orient_begin(ffr_state_t *st)
+{
+    ffr_orient_reset(&st->orient, &st->odo);
+    st->state = FFR_ST_ORIENT;
+}
+
+/* odometry's frame turned by -rot about its origin: `rot` becomes heading 0 */
+static void reframe(ffr_odometry_t *odo, float rot)
+{
+    float c = ffr_cosf(rot);
+    float s = ffr_sinf(rot);
+    float x = odo->x_mm, y = odo->y_mm;
+    odo->x_mm = c * x + s * y;
+    odo->y_mm = -s * x + c * y;
+    odo->heading_rad -= rot;
+    /* the sweep's heading error is the walls' direction measured, not the
+     * turn scale's doing: turn_calibration.c counts rotation from here */
+    odo->rot_raw_rad = 0.0f;
+}
+
+/* the unwrapped heading nearest `heading` that points along `dir` */
+static float nearest(float heading, float dir) { return heading + ffr_wrap_pi(dir - heading); }
+
+/* A turn in place at home: quicker than the route's turns (twice the gain,
+ * done within 2 degrees without waiting for the spin to settle: the next
+ * motion holds the heading anyway). 1 when there. */
+static int quick_turn(ffr_state_t *st, float target)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    float err = target - st->odo.heading_rad;
+    float lim = cfg->turn_rate_deg_s * FFR_DEG;
+    float w = ffr_clampf(2.0f * cfg->heading_kp * err, -lim, lim);
+    if (ffr_absf(err) < QUICK_TOL_DEG * FFR_DEG) {
+        return 1;
+    }
+    if (ffr_absf(w) < 30.0f * FFR_DEG) {
+        w = err > 0.0f ? 30.0f * FFR_DEG : -30.0f * FFR_DEG;
+    }
+    st->cmd_w_rad_s = w;
+    return 0;
+}
+
+/* the route's first direction from where the robot stands now */
+static void aim(ffr_state_t *st)
+{
+    ffr_home_orient_t *o = &st->orient;
+    float cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
+    int k = ffr_orient_choose(o, &st->cfg, o->dir0_rad, st->odo.heading_rad, cx, cy);
+    float dir = o->dir0_rad + (float)(k < 0 ? 0 : k) * 0.5f * FFR_PI;
+    if (k < 0) {
+        /* nothing open: the square direction nearest the one placed in */
+        dir = nearest(o->h0_rad, o->dir0_rad);
+        while (dir - o->h0_rad > 0.25f * FFR_PI) {
+            dir -= 0.5f * FFR_PI;
+        }
+        while (dir - o->h0_rad < -0.25f * FFR_PI) {
+            dir += 0.5f * FFR_PI;
+        }
+    }
+    o->target_rad = nearest(st->odo.heading_rad, dir);
+    o->phase = PH_TURN;
+}
+
+int ffr_orient_step(ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    ffr_home_orient_t *o = &st->orient;
+    ffr_stop(st);
+    if (o->phase == PH_SWEEP) {
+        /* toward the side the route wants its wall on: it is usually the way back */
+        float sweep = (cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? -1.0f : 1.0f) * ORIENT_SWEEP_DEG * FFR_DEG;
+        float done = ffr_absf(st->odo.heading_rad - o->h0_rad);
+        ffr_orient_record(o, cfg, &st->odo, &st->ir_geom, st->ir_mm);
+        if (done < ffr_absf(sweep) - 2.0f * FFR_DEG) {
+            /* on at full turn rate past the end: no slowing down to stop there */
+            st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->h0_rad + 1.5f * sweep);
+            return 0;
+        }
+        if (o->w < SEG_MIN_TOTAL_MM) {
+            /* no walls to go by: as placed */
+            o->dir0_rad = o->h0_rad;
+            o->target_rad = o->h0_rad;
+            o->phase = PH_TURN;
+        } else {
+            o->dir0_rad = ffr_orient_square(o);
+            o->phase = PH_CENTRE; /* next tick: one tick's budget for each decision */
+        }
+        return 0;
+    }
+    if (o->phase == PH_CENTRE) {
+        float dx, dy, cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
+        ffr_orient_centre(o, cfg, o->dir0_rad, cx, cy, &dx, &dy);
+        if (dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
+            float dir = ffr_atan2f(dy, dx);
+            float fwd = nearest(st->odo.heading_rad, dir);
+            float back = nearest(st->odo.heading_rad, dir + FFR_PI);
+            o->reverse = ffr_absf(back - st->odo.heading_rad) < ffr_absf(fwd - st->odo.heading_rad);
+            o->target_rad = o->reverse ? back : fwd;
+            o->goal_mm = ffr_sqrtf(dx * dx + dy * dy);
+            o->phase = PH_SHIFT_TURN;
+        } else {
+            o->phase = PH_AIM;
+        }
+        return 0;
+    }
+    if (o->phase == PH_SHIFT_TURN) {
+        if (!quick_turn(st, o->target_rad)) {
+            return 0;
+        }
+        ffr_stop(st);
+        o->goal_mm += st->odo.dist_mm; /* the shift's length, from here */
+        o->phase = PH_SHIFT_DRIVE;
+    }
+    if (o->phase == PH_SHIFT_DRIVE) {
+        float left = o->goal_mm - st->odo.dist_mm;
+        int blocked = !o->reverse && ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm;
+        if (left > 0.0f && !blocked) {
+            float v = ffr_stopping_speed(left, cfg->cruise_speed_mm_s);
+            ffr_drive_heading(st, o->target_rad, o->reverse ? -v : v);
+            return 0;
+        }
+        ffr_stop(st);
+        o->phase = PH_AIM;
+        return 0;
+    }
+    if (o->phase == PH_AIM) {
+        aim(st);
+    }
+    if (o->phase == PH_TURN) {
+        if (!quick_turn(st, o->target_rad)) {
+            return 0;
+        }
+        ffr_stop(st);
+        reframe(&st->odo, o->target_rad);
+        o->phase = PH_DONE;
+    }
+    return 1;
+}

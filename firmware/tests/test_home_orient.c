@@ -1,0 +1,210 @@
+/*
+ * home_orient.c: which way the robot faces at home, from a turn in place.
+ * The rangers' readings come from a true pose among straight walls (rig.c);
+ * odometry's frame is the world turned by an unknown angle, the robot's
+ * start heading, which the sweep must find (modulo 90 degrees).
+ */
+#include "ffr_internal.h"
+#include "rig.h"
+#include "unit.h"
+
+#define PI_F 3.14159265f
+
+/* A sweep in place at the world origin from true heading th0 through `sweep`
+ * radians, odometry's frame the world turned by `rot`; the parts read
+ * part_mm long (w). */
+static void sweep(ffr_home_orient_t *o, const ffr_config_t *cfg, const rig_walls_t *w, float x, float y, float th0,
+                  float sweep_rad, float rot)
+{
+    ffr_odometry_t odo;
+    ffr_ir_geom_t g;
+    float ir[FFR_IR_COUNT];
+    float th;
+    int i, k, n = 80;
+    ffr_odometry_reset(&odo);
+    odo.x_mm = ffr_cosf(rot) * x - ffr_sinf(rot) * y;
+    odo.y_mm = ffr_sinf(rot) * x + ffr_cosf(rot) * y;
+    odo.heading_rad = th0 + rot;
+    ffr_orient_reset(o, &odo);
+    for (k = 0; k <= n; ++k) {
+        th = th0 + sweep_rad * (float)k / (float)n;
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            ir[i] = rig_beam_mm(cfg, w, i, x, y, th);
+        }
+        odo.heading_rad = th + rot;
+        ffr_orient_record(o, cfg, &odo, rig_geom(&g, cfg, ir), ir);
+    }
+}
+
+/* what a direction is off the nearest multiple of 90 degrees */
+static float off90(float a)
+{
+    while (a > 0.25f * PI_F) {
+        a -= 0.5f * PI_F;
+    }
+    while (a <= -0.25f * PI_F) {
+        a += 0.5f * PI_F;
+    }
+    return a;
+}
+
+static void the_walls_direction_whatever_the_start_heading(void)
+{
+    ffr_config_t cfg;
+    ffr_home_orient_t o;
+    /* a hallway's dead end: walls 230 mm left and right, one 250 mm ahead (+x) */
+    rig_walls_t w = {230.0f, -230.0f, 250.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    int k;
+    float worst = 0.0f;
+    ffr_config_default(&cfg);
+    /* every start heading over a full turn, both sweep directions, odometry's
+     * frame turned by an unknown amount */
+    for (k = 0; k < 72; ++k) {
+        float th0 = (float)k * 5.0f * FFR_DEG;
+        float rot = 0.7f - th0; /* odometry starts at 0.7 rad, whatever the true heading */
+        float dir0, e;
+        sweep(&o, &cfg, &w, 0.0f, 0.0f, th0, (k & 1 ? -100.0f : 100.0f) * FFR_DEG, rot);
+        CHECK(o.w > 150.0f);
+        dir0 = ffr_orient_square(&o);
+        /* the world's walls run along 0 and 90 degrees: in odometry's frame, rot */
+        e = ffr_absf(off90(dir0 - rot));
+        worst = e > worst ? e : worst;
+    }
+    CHECK_NEAR(worst, 0.0f, 1.5f * FFR_DEG);
+}
+
+static void the_open_end_and_the_walls_around(void)
+{
+    ffr_config_t cfg;
+    ffr_home_orient_t o;
+    rig_walls_t w = {230.0f, -230.0f, 250.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    float rot = 0.3f;
+    ffr_config_default(&cfg);
+    sweep(&o, &cfg, &w, 0.0f, 0.0f, 1.0f, 100.0f * FFR_DEG, rot);
+    /* ahead (+x in the world: rot in odometry's frame) the end wall, 250 mm */
+    CHECK_NEAR(ffr_orient_free_mm(&o, 130.0f, rot, 0.0f, 0.0f), 250.0f, 10.0f);
+    CHECK_NEAR(ffr_orient_free_mm(&o, 130.0f, rot + 0.5f * PI_F, 0.0f, 0.0f), 230.0f, 10.0f);
+    CHECK_NEAR(ffr_orient_free_mm(&o, 130.0f, rot - 0.5f * PI_F, 0.0f, 0.0f), 230.0f, 10.0f);
+    /* behind: the open hallway, nothing seen */
+    CHECK(ffr_orient_free_mm(&o, 130.0f, rot + PI_F, 0.0f, 0.0f) > 800.0f);
+    /* the four at once: the same, from anywhere */
+    {
+        float f4[4];
+        int k;
+        for (k = 0; k < 4; ++k) {
+            float cx = 30.0f * (float)(k - 1), cy = -20.0f * (float)k;
+            int j;
+            ffr_orient_free4(&o, 130.0f, rot, cx, cy, f4);
+            for (j = 0; j < 4; ++j) {
+                CHECK_NEAR(f4[j], ffr_orient_free_mm(&o, 130.0f, rot + (float)j * 0.5f * PI_F, cx, cy), 0.5f);
+            }
+        }
+    }
+    /* the only open way is back down the hallway, walls close both sides:
+     * every rule picks it (k = 2: rot + 180 degrees) */
+    cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+    CHECK(ffr_orient_choose(&o, &cfg, rot, rot, 0.0f, 0.0f) == 2);
+    cfg.home_wall_side = FFR_HOME_WALL_LEFT;
+    CHECK(ffr_orient_choose(&o, &cfg, rot, rot, 0.0f, 0.0f) == 2);
+    cfg.home_wall_side = FFR_HOME_WALL_ANY;
+    CHECK(ffr_orient_choose(&o, &cfg, rot, rot, 0.0f, 0.0f) == 2);
+}
+
+/* bins filled by hand: a straight wall along a line through (px, py), direction (ux, uy) */
+static void add_wall(ffr_home_orient_t *o, float px, float py, float ux, float uy)
+{
+    int b;
+    for (b = -40; b <= 40; ++b) {
+        float x = px + ux * 20.0f * (float)b, y = py + uy * 20.0f * (float)b;
+        float r = ffr_sqrtf(x * x + y * y);
+        int bin = (int)((ffr_atan2f(y, x) < 0.0f ? ffr_atan2f(y, x) + 2.0f * PI_F : ffr_atan2f(y, x)) /
+                        (2.0f * PI_F / (float)FFR_ORIENT_BINS));
+        if (bin >= FFR_ORIENT_BINS) {
+            bin = FFR_ORIENT_BINS - 1;
+        }
+        if (r < 800.0f && r < (float)o->bin_mm[bin]) {
+            o->bin_mm[bin] = (uint16_t)r;
+            o->bin_x_mm[bin] = x;
+            o->bin_y_mm[bin] = y;
+        }
+    }
+}
+
+static void the_route_direction_by_the_wall_side_rule(void)
+{
+    ffr_config_t cfg;
+    ffr_home_orient_t o;
+    ffr_odometry_t odo;
+    float dx, dy;
+    ffr_config_default(&cfg);
+    ffr_odometry_reset(&odo);
+    ffr_orient_reset(&o, &odo);
+    /* a hallway's corner: a wall 310 mm east (+x), one 230 mm south; north
+     * (+y) and west open, as the 2004 arena's home */
+    add_wall(&o, 310.0f, 0.0f, 0.0f, 1.0f);
+    add_wall(&o, 0.0f, -230.0f, 1.0f, 0.0f);
+    /* open ahead, its wall on the right: north (k = 1); on the left: west (k = 2) */
+    cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) == 1);
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, PI_F, 0.0f, 0.0f) == 1);
+    cfg.home_wall_side = FFR_HOME_WALL_LEFT;
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) == 2);
+    /* any: one wall beside each way: the smaller turn */
+    cfg.home_wall_side = FFR_HOME_WALL_ANY;
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f) == 1);
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, PI_F, 0.0f, 0.0f) == 2);
+    /* where to stand: wall_target_mm (230) from the east wall, the south one
+     * already there */
+    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
+    CHECK_NEAR(dx, 310.0f - cfg.wall_target_mm, 15.0f);
+    CHECK_NEAR(dy, 0.0f, 15.0f);
+    /* two walls across an axis: the nearer one at wall_target_mm */
+    add_wall(&o, -150.0f, 0.0f, 0.0f, 1.0f);
+    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
+    CHECK_NEAR(dx, cfg.wall_target_mm - 150.0f, 15.0f);
+    /* all four ways shut: none is open */
+    add_wall(&o, 0.0f, 300.0f, 1.0f, 0.0f);
+    cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) == -1);
+}
+
+static void the_firmware_orients_before_the_route(void)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    int i, seen_orient = 0;
+    ffr_config_default(&cfg);
+    rig_init(&r, &cfg);
+    r.st.cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+    r.in.start = 1;
+    /* nothing in range anywhere: the robot sweeps, finds no wall to go by,
+     * returns to the heading it was placed in and starts the route there */
+    for (i = 0; i < 600 && r.out.state != FFR_ST_FOLLOW; ++i) {
+        rig_tick(&r);
+        if (r.out.state == FFR_ST_ORIENT) {
+            ++seen_orient;
+            CHECK(r.out.fan == 0);
+        }
+    }
+    CHECK(seen_orient > 20);
+    CHECK(r.out.state == FFR_ST_FOLLOW);
+    CHECK(r.out.step == 0);
+    /* odometry's frame: heading 0 is the route's first direction */
+    CHECK_NEAR(r.st.route.heading_ref_rad, 0.0f, 1e-6);
+    CHECK_NEAR(r.st.odo.heading_rad, 0.0f, 3.0f * FFR_DEG);
+
+    /* as placed: no orientation at all */
+    rig_init(&r, &cfg);
+    r.in.start = 1;
+    rig_tick(&r);
+    rig_tick(&r);
+    CHECK(r.out.state == FFR_ST_FOLLOW);
+}
+
+void suite_home_orient(void)
+{
+    the_walls_direction_whatever_the_start_heading();
+    the_open_end_and_the_walls_around();
+    the_route_direction_by_the_wall_side_rule();
+    the_firmware_orients_before_the_route();
+}

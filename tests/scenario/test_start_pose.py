@@ -1,0 +1,66 @@
+"""The firmware finds its way from any start pose in the home circle (home_orient.c).
+
+Start headings over the whole 0-360 degrees (24 slots, each heading drawn within its slot), positions
+drawn uniformly in the home circle where the robot has room to turn in place, every room, nominal
+sensors: every mission home with no wall contact. The draw is seeded (start_sweep.start_poses), so
+a failure replays; ``python -m tests.scenario.start_sweep poses`` runs the same draw (and others,
+``--seed``, ``--n``) as a table.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
+from start_sweep import start_poses, turn_radius_m
+
+from harness.scenario import make_scenario
+from sim_plant.arena import load_arena
+
+ARENA = load_arena()
+HEADINGS = 24
+CASES = [(room, pose) for room in (1, 2, 3, 4) for pose in start_poses(HEADINGS, seed=room)]
+
+
+def test_the_draw_covers_the_circle_and_every_heading() -> None:
+    hx, hy = ARENA.home_center
+    for room in (1, 2, 3, 4):
+        poses = start_poses(HEADINGS, seed=room)
+        slots = sorted(int(math.degrees(h) // (360 / HEADINGS)) for _, _, h in poses)
+        assert slots == list(range(HEADINGS))  # one heading in every 15-degree slot
+        for x, y, _ in poses:
+            assert math.hypot(x - hx, y - hy) <= ARENA.home_radius
+            assert ARENA.wall_distance(x, y) >= turn_radius_m()
+    # positions spread over the circle, not bunched at its centre
+    rs = [math.hypot(x - hx, y - hy) for room in (1, 2, 3, 4) for x, y, _ in start_poses(HEADINGS, seed=room)]
+    assert max(rs) > 0.6 * ARENA.home_radius
+
+
+@pytest.mark.parametrize(("room", "pose"), CASES,
+                         ids=[f"room{r}-{math.degrees(p[2]):.0f}deg-({p[0]:.3f},{p[1]:.3f})" for r, p in CASES])
+def test_any_start_pose_finds_the_way(ffr_mission, room: int, pose) -> None:
+    res, trace = ffr_mission(make_scenario(room=room, start=pose), record=True)
+    assert res.outcome == "home", res.detail
+    assert res.wall_contacts == 0
+    # it oriented itself first (state ORIENT), then ran the route
+    from ffr_link.abi import STATE_NAMES
+    states = trace.state
+    assert states[1] == STATE_NAMES.index("ORIENT")
+
+
+@settings(max_examples=8, deadline=None, derandomize=True, database=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.filter_too_much])
+@given(heading=st.floats(0.0, 360.0, exclude_max=True), r=st.floats(0.0, 1.0), a=st.floats(0.0, 2 * math.pi),
+       room=st.integers(1, 4))
+def test_property_any_heading_any_spot(ffr_mission, heading: float, r: float, a: float, room: int) -> None:
+    """Heading uniform over 0-360 degrees, position uniform in the home circle (where the robot can
+    turn in place)."""
+    hx, hy = ARENA.home_center
+    x = hx + ARENA.home_radius * math.sqrt(r) * math.cos(a)
+    y = hy + ARENA.home_radius * math.sqrt(r) * math.sin(a)
+    assume(ARENA.wall_distance(x, y) >= turn_radius_m() + 0.01)  # room to turn in place (docs/firmware.md)
+    res, _ = ffr_mission(make_scenario(room=room, start=(x, y, math.radians(heading))), record=False)
+    assert res.outcome == "home", res.detail
+    assert res.wall_contacts == 0
