@@ -19,8 +19,9 @@ published sizes or placement rules were found: these are chosen.
   only just.
 
 Random furniture (``draw_furniture``) takes sizes uniform in
-``SIZE_RANGE`` (10-20 cm a side, chosen), one piece per room in turn, its
-sides square to the room's walls, and is drawn again until the rules hold.
+``SIZE_RANGE`` (10-20 cm a side, chosen), one piece per room in turn (a room
+with no place left passes it to the next), its sides square to the room's
+walls, and is drawn again until the rules hold.
 """
 
 from __future__ import annotations
@@ -126,28 +127,40 @@ def draw_furniture(arena: Arena, n: int, candle: tuple[float, float], rng: np.ra
         raise FfrInputError(source, "furniture", n, f"expected 0..{MAX_PIECES} pieces")
     pieces: list[Piece] = []
     for k in range(n):
-        room = arena.rooms[k % len(arena.rooms)]
-        lo, hi = room.polygon.min(axis=0), room.polygon.max(axis=0)
-        for _ in range(_TRIES):
-            w, d = (float(v) for v in rng.uniform(*SIZE_RANGE, size=2))
-            heading = 0.5 * math.pi * int(rng.integers(0, 2))
-            if rng.uniform() < 0.5:  # against one of the room's walls (a bounding-box side: rooms are rectangles)
-                side = int(rng.integers(0, 4))
-                ex = (d if heading == 0.0 else w) / 2.0
-                ey = (w if heading == 0.0 else d) / 2.0
-                x, y = (float(v) for v in rng.uniform(lo + [ex, ey], hi - [ex, ey]))
-                gap = 0.01
-                x = [lo[0] + ex + gap, hi[0] - ex - gap, x, x][side]
-                y = [y, y, lo[1] + ey + gap, hi[1] - ey - gap][side]
-            else:
-                x, y = (float(v) for v in rng.uniform(lo, hi))
-            piece = Piece(float(x), float(y), w, d, heading)
-            if furniture_problem(arena, piece, candle, pieces) is None:
+        # its room in turn; a room with no place left (a small room holding the candle) passes the
+        # piece on to the next
+        for step in range(len(arena.rooms)):
+            room = arena.rooms[(k + step) % len(arena.rooms)]
+            piece = _place(arena, room, candle, pieces, rng)
+            if piece is not None:
                 pieces.append(piece)
                 break
         else:
-            raise FfrInputError(source, "furniture", n, f"no place for piece {k} in room {room.id}")
+            raise FfrInputError(source, "furniture", n, f"no place for piece {k} in any room")
     return pieces
+
+
+def _place(arena: Arena, room: Room, candle: tuple[float, float], pieces: list[Piece],
+           rng: np.random.Generator) -> Piece | None:
+    """A random piece where it may stand in ``room`` (None after ``_TRIES`` draws)."""
+    lo, hi = room.polygon.min(axis=0), room.polygon.max(axis=0)
+    for _ in range(_TRIES):
+        w, d = (float(v) for v in rng.uniform(*SIZE_RANGE, size=2))
+        heading = 0.5 * math.pi * int(rng.integers(0, 2))
+        if rng.uniform() < 0.5:  # against one of the room's walls (a bounding-box side: rooms are rectangles)
+            side = int(rng.integers(0, 4))
+            ex = (d if heading == 0.0 else w) / 2.0
+            ey = (w if heading == 0.0 else d) / 2.0
+            x, y = (float(v) for v in rng.uniform(lo + [ex, ey], hi - [ex, ey]))
+            gap = 0.01
+            x = [lo[0] + ex + gap, hi[0] - ex - gap, x, x][side]
+            y = [y, y, lo[1] + ey + gap, hi[1] - ey - gap][side]
+        else:
+            x, y = (float(v) for v in rng.uniform(lo, hi))
+        piece = Piece(float(x), float(y), w, d, heading)
+        if furniture_problem(arena, piece, candle, pieces) is None:
+            return piece
+    return None
 
 
 def furnish(arena: Arena, pieces: list[Piece]) -> Arena:
