@@ -26,7 +26,7 @@ from typing import IO
 
 from ffr_link.base import LinkError
 from hil_bridge.child_process import describe_exit, stop_process
-from hil_bridge.options import WireOptions, parse_url
+from hil_bridge.options import WireOptions, parse_url, simulated_board
 from hil_bridge.serial_link import SerialLink
 from hil_bridge.wire_link import WireLink
 
@@ -146,6 +146,7 @@ def open_host_board_serial(opts: WireOptions) -> HostBoardSerialLink:
 
 def open_host_board(url: str) -> WireLink:
     target, opts = parse_url(url)
+    simulated_board(opts)
     link: WireLink
     if target == "serial":
         link = open_host_board_serial(opts)

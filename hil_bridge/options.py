@@ -34,6 +34,19 @@ class WireOptions:
     faults: FaultSpec = field(default_factory=FaultSpec)
 
 
+# The link watchdog asked of a simulated board (host-board:, qemu:) when the URL names none. It
+# stops a real robot's motors when its host falls silent; a simulated board's motors are the
+# plant's, which waits for the host, and a host stalled by a busy machine (seen: 0.5 s at a load
+# of 8 on 2 cores) is no robot running away. A real board (serial:, can:) keeps its own (500 ms).
+SIMULATED_WATCHDOG_MS = 5000
+
+
+def simulated_board(opts: WireOptions) -> WireOptions:
+    if not opts.watchdog_ms:
+        opts.watchdog_ms = SIMULATED_WATCHDOG_MS
+    return opts
+
+
 _BOOL = {"1": True, "true": True, "yes": True, "0": False, "false": False, "no": False}
 
 

@@ -34,7 +34,7 @@ from pathlib import Path
 
 from ffr_link.base import LinkError
 from hil_bridge.child_process import describe_exit, stop_process
-from hil_bridge.options import WireOptions, parse_url
+from hil_bridge.options import WireOptions, parse_url, simulated_board
 from hil_bridge.serial_link import SerialLink
 
 REPO = Path(__file__).resolve().parents[1]
@@ -187,6 +187,7 @@ class QemuLink(SerialLink):
 
 def open_qemu(url: str) -> QemuLink:
     machine, opts = parse_url(url)
+    simulated_board(opts)
     frag = url.partition("#")[2]
     # an emulated board translates its code on first use: give the start-up and each step more time
     if "handshake_timeout_s" not in frag:

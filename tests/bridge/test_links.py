@@ -311,3 +311,20 @@ def test_a_board_waits_for_a_harness_that_is_slow_to_start() -> None:
         assert link.link_counters().errors == {}
     finally:
         link.close()
+
+
+@pytest.mark.parametrize("url", ["host-board:serial", "host-board:can"])
+def test_a_simulated_board_waits_out_a_host_stalled_by_a_busy_machine(url: str) -> None:
+    # A loaded CI machine held a host process for over 0.5 s between two ticks: the board's 500 ms
+    # watchdog tripped and a clean link was not silent. A simulated board's watchdog is 5 s.
+    from hil_bridge.options import SIMULATED_WATCHDOG_MS
+
+    with open_link(url) as link:
+        res, _ = run_mission(short_scenario(seconds=0.5), link)
+        assert int(link.info["watchdog_ms"]) == SIMULATED_WATCHDOG_MS == 5000  # type: ignore[attr-defined]
+        time.sleep(0.8)  # the host stalls
+        res, _ = run_mission(short_scenario(seconds=0.5), link)
+        assert link.link_counters().errors == {}
+    with open_link(f"{url}#watchdog_ms=250") as link:  # asked for: kept
+        link.reset(_config())
+        assert int(link.info["watchdog_ms"]) == 250  # type: ignore[attr-defined]
