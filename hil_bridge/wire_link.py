@@ -109,12 +109,15 @@ class WireLink(FirmwareLink):
             tries += 1
             deadline = min(time.monotonic() + timeout_s * (1 << min(silent, 4)), t0 + budget_s)
             heard = False
+            looked = False
             while True:
                 left = deadline - time.monotonic()
                 if left <= 0:
-                    break
+                    if looked:
+                        break
+                    looked = True  # the deadline passed: one last look, in case this process was held
                 try:
-                    reply = self._recv_msg(left)
+                    reply = self._recv_msg(max(left, 0.0))
                 except DecodeError as exc:
                     if exc.status in (Status.CRC, Status.COBS, Status.SHORT, Status.LONG, Status.SEGMENT,
                                       Status.LENGTH):

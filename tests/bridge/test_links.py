@@ -328,3 +328,24 @@ def test_a_simulated_board_waits_out_a_host_stalled_by_a_busy_machine(url: str) 
     with open_link(f"{url}#watchdog_ms=250") as link:  # asked for: kept
         link.reset(_config())
         assert int(link.info["watchdog_ms"]) == 250  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize("url", ["host-board:serial", "host-board:can"])
+def test_an_answer_that_came_while_the_host_was_held_past_its_deadline_is_no_silence(url: str) -> None:
+    # A busy machine holds the host process past its read deadline while the board's answer
+    # arrives: that answer is taken (a last look), not counted as silence and retried.
+    with open_link(url) as link:
+        orig = link._recv_msg  # type: ignore[attr-defined]
+        calls = {"n": 0}
+
+        def held(timeout_s: float) -> bytes | None:
+            calls["n"] += 1
+            if calls["n"] == 200:
+                time.sleep(timeout_s + 0.1)  # held past the deadline; the answer is there by now
+                return orig(0.0)  # what the caller's deadline leaves
+            return orig(timeout_s)
+
+        link._recv_msg = held  # type: ignore[attr-defined]
+        res, _ = run_mission(short_scenario(seconds=3.0), link)
+        assert calls["n"] > 200
+        assert link.link_counters().errors == {}
