@@ -146,7 +146,12 @@ int ffr_turn_done(const ffr_config_t *cfg, const ffr_odometry_t *o, float target
  * default body's corner radius is 156 mm; 60 mm keeps the nominal route's
  * turns (at a wall ahead: front_stop_mm = 230 mm) out of it */
 #define FFR_TURN_MARGIN_MM 60.0f
-/* chosen: a turn near a wall ahead waits for the body to slow below this */
+/* chosen (turn.c, ffr_turn_onset): a turn near a wall ahead counts on the
+ * body rolling on this long (the realistic profile's slipping tracks: ~40 mm
+ * from 200 mm/s), and waits for it to slow below FFR_TURN_ROLL_MM_S */
+#ifndef FFR_TURN_ROLL_S
+#define FFR_TURN_ROLL_S 0.2f
+#endif
 #ifndef FFR_TURN_ROLL_MM_S
 #define FFR_TURN_ROLL_MM_S 30.0f
 #endif
@@ -167,6 +172,9 @@ int ffr_opening(const ffr_openings_t *op, int side);
 void ffr_room_begin(ffr_state_t *st, uint8_t room);
 /* Returns 1 when the robot has left the room. */
 int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in);
+/* Leaving a room: the yaw rate (rad/s, + left) that steers a front corner off
+ * a wall its ranger sees beside the front half (this tick's hits). */
+float ffr_leave_guard(const ffr_state_t *st);
 
 /* drive.c: corridor driving shared by the route steps. */
 void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed);

@@ -92,7 +92,7 @@ static int event_fired(ffr_state_t *st, const ffr_step_t *s)
     const ffr_config_t *cfg = &st->cfg;
     switch (s->event) {
     case FFR_EV_FRONT:
-        return ffr_front_now(cfg, &st->odo, st->ir_mm) < cfg->front_stop_mm;
+        return ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm;
     case FFR_EV_OPEN_L:
         return ffr_opening(&st->open, FFR_SIDE_LEFT);
     case FFR_EV_OPEN_R:

@@ -44,9 +44,10 @@ float ffr_turn_room_v(const ffr_config_t *cfg, const ffr_odometry_t *o, const fl
  * A turn in place begun while the robot still rolls on (the step before it
  * stopped on an event at speed) drives the wheel that must reverse forward
  * until its speed loop has turned it round, and the body goes on into the
- * turn (~40 mm from 200 mm/s with slipping tracks). With a wall near ahead
- * (within the corner radius + FFR_TURN_MARGIN_MM + 150 mm) the turn's rate
- * is held back while odometry's forward speed is above FFR_TURN_ROLL_MM_S:
+ * turn (~40 mm from 200 mm/s with slipping tracks). If rolling on for
+ * FFR_TURN_ROLL_S more at odometry's forward speed would bring the wall ahead
+ * within the corner radius + half FFR_TURN_MARGIN_MM, the turn's rate
+ * is held back while that speed is above FFR_TURN_ROLL_MM_S:
  * full below it, none 100 mm/s above it. Elsewhere the turn starts at once.
  * Returns the factor on the turn's rate, 0..1.
  */
@@ -54,7 +55,8 @@ float ffr_turn_onset(const ffr_config_t *cfg, const ffr_odometry_t *o, const flo
 {
     float r = ffr_sqrtf(cfg->body_front_mm * cfg->body_front_mm + cfg->body_half_width_mm * cfg->body_half_width_mm);
     float v = 0.5f * (o->v_mm_s[0] + o->v_mm_s[1]);
-    if (ffr_front_now(cfg, o, ir_mm) > r + FFR_TURN_MARGIN_MM + 150.0f) {
+    /* where the front would be after rolling on for FFR_TURN_ROLL_S more */
+    if (ffr_front_now(cfg, o, ir_mm) - (v > 0.0f ? v : 0.0f) * FFR_TURN_ROLL_S > r + 0.5f * FFR_TURN_MARGIN_MM) {
         return 1.0f;
     }
     return ffr_clampf(1.0f - (v - FFR_TURN_ROLL_MM_S) / 100.0f, 0.0f, 1.0f);

@@ -106,8 +106,8 @@ static void a_turn_near_a_wall_waits_for_the_body_to_slow(void)
             ir[FFR_IR_CF] = front - cfg.ir_x_mm[FFR_IR_CF];
             f = ffr_turn_onset(&cfg, &o, ir);
             CHECK(f >= 0.0f && f <= 1.0f);
-            if (ffr_front_now(&cfg, &o, ir) > r + FFR_TURN_MARGIN_MM + 150.0f) {
-                CHECK(f == 1.0f); /* far from the wall: at once */
+            if (ffr_front_now(&cfg, &o, ir) - v * FFR_TURN_ROLL_S > r + 0.5f * FFR_TURN_MARGIN_MM) {
+                CHECK(f == 1.0f); /* rolling on would still leave room: at once */
             } else if (v <= FFR_TURN_ROLL_MM_S) {
                 CHECK(f == 1.0f); /* slow enough: at once */
             } else if (v >= FFR_TURN_ROLL_MM_S + 100.0f) {
@@ -116,8 +116,8 @@ static void a_turn_near_a_wall_waits_for_the_body_to_slow(void)
             (void)prev;
         }
     }
-    /* held back more the faster it rolls */
-    ir[FFR_IR_CF] = 200.0f;
+    /* held back more the faster it rolls (the wall 180 mm ahead of the origin) */
+    ir[FFR_IR_CF] = 180.0f - cfg.ir_x_mm[FFR_IR_CF];
     {
         float prev = 2.0f;
         for (k = 0; k <= 32; ++k) {
