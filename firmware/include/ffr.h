@@ -309,6 +309,7 @@ typedef struct {
     uint32_t phase_start_ms;
     uint32_t below_since_ms;
     float flame_f;                 /* flame sum, filtered: is it out?          */
+    float best_front_mm;           /* the wall ahead at the best heading (front distance) */
 } ffr_room_state_t;
 
 /* The rangers' geometry in the body frame (x ahead, y left; ir_calibration.c):

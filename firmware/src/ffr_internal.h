@@ -50,6 +50,12 @@ void ffr_speed_control(ffr_speed_ctl_t *s, const ffr_config_t *cfg, const ffr_od
 /* proximity.c: forward speed from the front ranger. */
 float ffr_front_distance(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT]);
 float ffr_proximity_speed(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float cruise);
+/* The front distance less the travel since the reading was measured (its age,
+ * chosen: one datasheet period, 38.3 ms, rounded up; the reading is one to two
+ * periods old with the part's latency, and a stop anticipated by a period
+ * costs a nominal robot 13 mm at cruise speed). */
+#define FFR_IR_AGE_MS 40.0f
+float ffr_front_now(const ffr_config_t *cfg, const ffr_odometry_t *o, const float ir_mm[FFR_IR_COUNT]);
 
 /* wall_follow.c (Fig. 10): wall line from two rangers on one side. */
 typedef struct {
@@ -136,6 +142,21 @@ void ffr_turn_cal_learn(ffr_odometry_t *o, float err);
 /* turn.c: turning in place by odometry. */
 float ffr_turn_yaw(const ffr_config_t *cfg, float heading, float target);
 int ffr_turn_done(const ffr_config_t *cfg, const ffr_odometry_t *o, float target);
+/* chosen: the contest hallway leaves 230 mm from its middle to a wall, the
+ * default body's corner radius is 156 mm; 60 mm keeps the nominal route's
+ * turns (at a wall ahead: front_stop_mm = 230 mm) out of it */
+#define FFR_TURN_MARGIN_MM 60.0f
+/* chosen (turn.c, ffr_turn_onset): a turn near a wall ahead counts on the
+ * body rolling on this long (the realistic profile's slipping tracks: ~40 mm
+ * from 200 mm/s), and waits for it to slow below FFR_TURN_ROLL_MM_S */
+#ifndef FFR_TURN_ROLL_S
+#define FFR_TURN_ROLL_S 0.2f
+#endif
+#ifndef FFR_TURN_ROLL_MM_S
+#define FFR_TURN_ROLL_MM_S 30.0f
+#endif
+float ffr_turn_room_v(const ffr_config_t *cfg, const ffr_odometry_t *o, const float ir_mm[FFR_IR_COUNT]);
+float ffr_turn_onset(const ffr_config_t *cfg, const ffr_odometry_t *o, const float ir_mm[FFR_IR_COUNT]);
 
 /* line_counter.c */
 void ffr_lines_reset(ffr_line_counter_t *l);
@@ -151,6 +172,9 @@ int ffr_opening(const ffr_openings_t *op, int side);
 void ffr_room_begin(ffr_state_t *st, uint8_t room);
 /* Returns 1 when the robot has left the room. */
 int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in);
+/* Leaving a room: the yaw rate (rad/s, + left) that steers a front corner off
+ * a wall its ranger sees beside the front half (this tick's hits). */
+float ffr_leave_guard(const ffr_state_t *st);
 
 /* drive.c: corridor driving shared by the route steps. */
 void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed);

@@ -50,6 +50,7 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->room.phase_start_ms = 0u;
     st->room.below_since_ms = 0u;
     st->room.flame_f = 0.0f;
+    st->room.best_front_mm = 0.0f;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         st->ir_mm[i] = FFR_IR_NONE(cfg);
     }

@@ -39,6 +39,20 @@ enum {
 /* the flame sum (over the dark level) at about 26 cm of the fans, in units
  * of flame_detect: the fans (30 cm reach) put it out from there */
 #define FLAME_REACH 14.0f
+/* a scan's peak this strong (x flame_detect) is no wall's reflection:
+ * chosen, 2 (the realistic profile's reflectance 0.3 gave peaks of 1.2-1.3
+ * facing a wall 20 cm away with the flame behind) */
+#ifndef SCAN_SURE
+#define SCAN_SURE 2.0f
+#endif
+/* chosen: a wall ahead nearer than this (front distance) can mirror the flame
+ * strongly enough to pass for it */
+#ifndef SCAN_WALL_MM
+#define SCAN_WALL_MM 400.0f
+#endif
+/* room_state_t.flame_found: none, found, and found with the approach stopped
+ * by the flame's strength (FLAME_REACH) beside a wall, then going closer */
+enum { FOUND = 1, FOUND_BY_STRENGTH = 2, FOUND_CLOSER = 3 };
 /* clearance kept beyond the body's corner radius for the scan's turn in place */
 #define SCAN_MARGIN_MM 35.0f
 
@@ -70,6 +84,7 @@ static void begin_scan(ffr_state_t *st)
     st->room.start_heading_rad = st->odo.heading_rad;
     st->room.best_signal = 0.0f;
     st->room.best_heading_rad = st->odo.heading_rad;
+    st->room.best_front_mm = 0.0f;
     phase(st, RP_SCAN);
 }
 
@@ -249,6 +264,36 @@ static float approach_guard(const ffr_state_t *st, const door_frame_t *f, float 
 }
 
 /*
+ * Leaving: the heading back out of the door is odometry's, and a room's scan
+ * (one turn or more in place on slipping tracks) can leave it 10-15 degrees
+ * off. A front corner ranger's hit beside the front half, nearer the body's
+ * side than guard_side_mm, steers away from it (the approach guard's law),
+ * so the robot leaves along the jamb instead of into the wall beyond it.
+ */
+float ffr_leave_guard(const ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    static const int rangers[2] = {FFR_IR_LF, FFR_IR_RF};
+    float w = 0.0f;
+    int k;
+    for (k = 0; k < 2; ++k) {
+        int i = rangers[k];
+        float px = st->ir_geom.hit_x_mm[i];
+        float py = st->ir_geom.hit_y_mm[i];
+        float side_gap = ffr_absf(py) - cfg->body_half_width_mm;
+        if (!ffr_ir_valid(cfg, st->ir_mm[i]) || px <= 0.0f || px - cfg->body_front_mm >= cfg->guard_side_mm
+            || side_gap >= cfg->guard_side_mm) {
+            continue;
+        }
+        {
+            float push = (cfg->guard_side_mm - (side_gap > 0.0f ? side_gap : 0.0f)) * 0.03f;
+            w += py > 0.0f ? -push : push;
+        }
+    }
+    return w;
+}
+
+/*
  * The scan turns in place, sweeping a circle of the body's corner radius: a
  * robot that came through the door off-centre and has a side wall closer
  * than that edges away from it while it drives in (a heading offset, so the
@@ -319,8 +364,15 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         if (sig > r->best_signal) {
             r->best_signal = sig;
             r->best_heading_rad = st->odo.heading_rad;
+            r->best_front_mm = ffr_front_distance(cfg, st->ir_mm);
         }
-        if (r->best_signal >= cfg->flame_detect && sig < 0.6f * r->best_signal) {
+        /* past the peak: stop early, unless a weak peak (below SCAN_SURE x
+         * flame_detect) was seen facing a wall near ahead (SCAN_WALL_MM): it
+         * may be the flame's image in that wall (white walls reflect) while
+         * the flame itself is still behind. Then the whole turn, and the
+         * strongest. */
+        if (r->best_signal >= cfg->flame_detect && sig < 0.6f * r->best_signal
+            && (r->best_signal >= SCAN_SURE * cfg->flame_detect || r->best_front_mm > SCAN_WALL_MM)) {
             r->flame_found = 1;
             st->flags |= FFR_FLAG_FLAME_SEEN;
             phase(st, RP_TURN_BEST);
@@ -357,11 +409,19 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         /* beside a wall with the flame already within the fans' reach: stop
          * here rather than creep on along the wall; a part reading long
          * lets a front corner reach the wall before the guard stops it */
-        if (guard_near && sig >= FLAME_REACH * cfg->flame_detect) {
-            guard_stop = 1;
+        int reach_stop = 0;
+        if (guard_near && sig >= FLAME_REACH * cfg->flame_detect && r->flame_found != FOUND_CLOSER
+            && !guard_stop) {
+            reach_stop = 1;
         }
-        if (st->lines.edge || guard_stop || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
+        if (st->lines.edge || guard_stop || reach_stop
+            || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
             ffr_stop(st);
+            /* stopped by the flame's strength alone (nothing else stops it
+             * here): if the fans do not put it out, it was farther than its
+             * strength said -- flames differ in size -- and the robot goes
+             * closer */
+            r->flame_found = (reach_stop && !st->lines.edge) ? FOUND_BY_STRENGTH : FOUND;
             if (nose_in_doorway(st, &df) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
                 /* at the doorway it came in by, or stopped by a wall with the
                  * flame still far: the flame is not in this room but seen
@@ -402,6 +462,15 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
             r->attempts = (uint8_t)(r->attempts + 1u);
             if (r->attempts >= cfg->fan_attempts) {
                 ffr_fail(st, FFR_FAIL_NOT_OUT);
+                return 0;
+            }
+            if (r->flame_found == FOUND_BY_STRENGTH) {
+                /* not out from where its strength said it was in reach: on
+                 * toward it until the line, a wall or the candle stops the
+                 * robot, then the fans again */
+                r->flame_found = FOUND_CLOSER;
+                st->fan = 0;
+                phase(st, RP_APPROACH);
                 return 0;
             }
             phase(st, RP_EXTINGUISH);
@@ -461,6 +530,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
             return 0;
         }
         ffr_drive_heading(st, st->route.heading_ref_rad, cfg->room_speed_mm_s);
+        st->cmd_w_rad_s += ffr_leave_guard(st);
         return 0;
     case RP_LEAVE_OUT:
         if (moved >= cfg->room_exit_mm || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
@@ -470,6 +540,7 @@ int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
         }
         ffr_drive_heading(st, st->route.heading_ref_rad,
                           ffr_stopping_speed(cfg->room_exit_mm - moved, cfg->room_speed_mm_s));
+        st->cmd_w_rad_s += ffr_leave_guard(st);
         return 0;
     default:
         ffr_fail(st, FFR_FAIL_BAD_ROUTE);

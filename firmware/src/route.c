@@ -78,12 +78,12 @@ static void next(ffr_state_t *st)
 static int drive_to_goal(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
-    if (st->odo.dist_mm >= st->route.goal_mm || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
+    float left = st->route.goal_mm - st->odo.dist_mm;
+    if (left <= 0.0f || ffr_front_now(cfg, &st->odo, st->ir_mm) < cfg->front_stop_mm) {
         ffr_stop(st);
         return 1;
     }
-    ffr_drive_heading(st, st->route.heading_ref_rad,
-                      ffr_stopping_speed(st->route.goal_mm - st->odo.dist_mm, cfg->cruise_speed_mm_s));
+    ffr_drive_heading(st, st->route.heading_ref_rad, ffr_stopping_speed(left, cfg->cruise_speed_mm_s));
     return 0;
 }
 
@@ -134,7 +134,9 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
         return;
     case FFR_OP_TURN:
         ffr_stop(st);
-        st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, st->route.target_rad);
+        st->cmd_v_mm_s = ffr_turn_room_v(cfg, &st->odo, st->ir_mm);
+        st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, st->route.target_rad)
+                          * ffr_turn_onset(cfg, &st->odo, st->ir_mm);
         if (ffr_turn_done(cfg, &st->odo, st->route.target_rad)) {
             st->route.heading_ref_rad = st->route.target_rad;
             ffr_stop(st);
@@ -143,7 +145,7 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
         return;
     case FFR_OP_FORWARD: {
         float left = st->route.goal_mm - st->odo.dist_mm;
-        if (left <= 0.0f || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
+        if (left <= 0.0f || ffr_front_now(cfg, &st->odo, st->ir_mm) < cfg->front_stop_mm) {
             ffr_stop(st);
             next(st);
             return;

@@ -19,6 +19,7 @@ int main(void)
     suite_robustness();
     suite_home_orient();
     suite_turn_calibration();
+    suite_turn_room();
     printf("firmware: %d passed, %d failed\n", unit_tally.passed, unit_tally.failed);
     return unit_tally.failed == 0 ? 0 : 1;
 }

@@ -165,6 +165,130 @@ static void flame_beyond_the_door_is_left_alone(void)
     CHECK(r.out.state == FFR_ST_EXTINGUISH);
 }
 
+/* Flames differ in size: an approach stopped beside a wall by the flame's
+ * strength alone (FLAME_REACH) goes closer when the fans do not put it out;
+ * one stopped by the candle circle's line does not. */
+static void a_flame_not_out_from_where_its_strength_said_is_approached_closer(void)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    int i;
+    uint16_t peaks[3] = {1200, 1500, 2000}; /* sums 2400..4000: all past FLAME_REACH x flame_detect */
+    int k;
+    for (k = 0; k < 3; ++k) {
+        float s0;
+        enter_and_scan(&r, &cfg, 0.0f, (float)peaks[k]);
+        /* a wall near the left front corner, not touching: the guard's "near" */
+        r.in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(&cfg, 120.0f);
+        for (i = 0; i < 50 && r.out.state == FFR_ST_APPROACH; ++i) {
+            rig_tick(&r);
+        }
+        CHECK(r.out.state == FFR_ST_EXTINGUISH);
+        /* the flame stays lit: after one attempt's fan time, on toward it */
+        for (i = 0; i < (int)(cfg.fan_timeout_ms / 10u) + 10 && r.out.state == FFR_ST_EXTINGUISH; ++i) {
+            rig_tick(&r);
+        }
+        CHECK(r.out.state == FFR_ST_APPROACH);
+        CHECK(r.out.fan == 0);
+        s0 = r.st.odo.dist_mm;
+        for (i = 0; i < 30; ++i) {
+            rig_tick(&r);
+        }
+        CHECK(r.out.state == FFR_ST_APPROACH);
+        CHECK(r.st.odo.dist_mm > s0 + 5.0f); /* it drives on */
+        /* the candle circle stops it: fans again */
+        rig_line(&r, 0, 3);
+        CHECK(r.out.state == FFR_ST_EXTINGUISH);
+        /* stopped by the line: a second timeout keeps the fans at it */
+        for (i = 0; i < (int)(cfg.fan_timeout_ms / 10u) + 10; ++i) {
+            rig_tick(&r);
+        }
+        CHECK(r.out.state == FFR_ST_EXTINGUISH);
+    }
+}
+
+/* Leaving a room on odometry's heading, a front corner near a wall beside
+ * it steers away; nothing near, no steering. Over the guard's whole band. */
+static void leaving_a_room_steers_a_front_corner_off_a_wall(void)
+{
+    static ffr_state_t st;
+    int i, side;
+    ffr_config_default(&st.cfg);
+    ffr_ir_geom_init(&st.ir_geom, &st.cfg);
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        st.ir_mm[i] = FFR_IR_NONE(&st.cfg);
+    }
+    ffr_ir_geom_update(&st.ir_geom, &st.cfg, st.ir_mm);
+    CHECK(ffr_leave_guard(&st) == 0.0f);
+    for (side = 0; side < 2; ++side) {
+        int k = side == 0 ? FFR_IR_LF : FFR_IR_RF;
+        float prev = 0.0f;
+        /* a wall parallel to the heading, from 40 mm off the body's side in
+         * to touching: the corner ranger reads it along its 45 degree beam */
+        for (i = 0; i <= 40; ++i) {
+            float gap = 80.0f - 2.0f * (float)i; /* wall to the body's side, mm */
+            float lat = st.cfg.body_half_width_mm + gap - 70.0f; /* from the ranger */
+            float w;
+            st.ir_mm[FFR_IR_LF] = st.ir_mm[FFR_IR_RF] = FFR_IR_NONE(&st.cfg);
+            st.ir_mm[k] = lat / 0.70710678f;
+            ffr_ir_geom_update(&st.ir_geom, &st.cfg, st.ir_mm);
+            w = ffr_leave_guard(&st);
+            if (!ffr_ir_valid(&st.cfg, st.ir_mm[k]) || st.ir_mm[k] < st.cfg.ir_min_mm) {
+                continue;
+            }
+            if (gap >= st.cfg.guard_side_mm || st.ir_geom.hit_x_mm[k] - st.cfg.body_front_mm >= st.cfg.guard_side_mm) {
+                CHECK(w == 0.0f);
+            } else if (side == 0) {
+                CHECK(w < 0.0f && w <= prev); /* wall on the left: right, harder nearer */
+            } else {
+                CHECK(w > 0.0f && w >= prev);
+            }
+            prev = w;
+        }
+    }
+}
+
+/* The white walls mirror the flame: a weak peak seen facing a near wall
+ * does not end the scan early; the flame farther round is found and approached.
+ * A weak peak with no wall ahead still ends it early (as before). */
+static void a_flame_reflection_in_a_near_wall_does_not_end_the_scan(void)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    int wall, i;
+    for (wall = 0; wall < 2; ++wall) {
+        ffr_config_default(&cfg);
+        rig_room_route(&cfg, 1);
+        rig_init(&r, &cfg);
+        r.in.start = 1;
+        rig_line(&r, 21, 4);
+        CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 400));
+        for (i = 0; i < 900 && r.out.state == FFR_ST_SCAN; ++i) {
+            float h = r.st.odo.heading_rad / FFR_DEG;
+            float dw = h - 60.0f, df = h - 130.0f;
+            float s = 40.0f;
+            if (dw > -20.0f && dw < 20.0f) {
+                s = 40.0f + 75.0f * (1.0f - dw * dw / 400.0f); /* sum up to 1.3 x flame_detect */
+            }
+            if (df > -20.0f && df < 20.0f) {
+                s = 40.0f + 860.0f * (1.0f - df * df / 400.0f);
+            }
+            r.in.flame[0] = r.in.flame[1] = (uint16_t)s;
+            r.in.ir_mv[FFR_IR_CF] = (wall && dw > -30.0f && dw < 30.0f)
+                                        ? rig_mv_for_mm(&cfg, 250.0f - cfg.ir_x_mm[FFR_IR_CF])
+                                        : 0u;
+            rig_tick(&r);
+        }
+        r.in.ir_mv[FFR_IR_CF] = 0u;
+        CHECK(rig_run_until_state(&r, FFR_ST_APPROACH, 400));
+        if (wall) {
+            CHECK_NEAR(r.st.room.best_heading_rad / FFR_DEG, 130.0, 6.0);
+        } else {
+            CHECK_NEAR(r.st.room.best_heading_rad / FFR_DEG, 60.0, 6.0);
+        }
+    }
+}
+
 static void flame_dark_level_is_learned(void)
 {
     ffr_config_t cfg;
@@ -189,6 +313,9 @@ static void flame_dark_level_is_learned(void)
 
 void suite_robustness(void)
 {
+    leaving_a_room_steers_a_front_corner_off_a_wall();
+    a_flame_reflection_in_a_near_wall_does_not_end_the_scan();
+    a_flame_not_out_from_where_its_strength_said_is_approached_closer();
     flame_dark_level_is_learned();
     openings_by_the_rear_ranger();
     far_hits_are_not_the_wall();

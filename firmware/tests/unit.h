@@ -47,4 +47,5 @@ void suite_layout(void);
 void suite_robustness(void);
 void suite_home_orient(void);
 void suite_turn_calibration(void);
+void suite_turn_room(void);
 #endif
