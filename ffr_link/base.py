@@ -33,7 +33,10 @@ class LinkCounters:
     retries: int = 0       # messages sent again
     stale: int = 0         # late or repeated answers, ignored
     board_errors: int = 0  # error reports from the board
-    watchdog: int = 0      # the board's watchdog tripped
+    watchdog: int = 0      # the board's watchdog tripped during a mission
+    # ... or between two missions, while the host ran none: the board stopped a robot nobody was
+    # driving, as it should; reported at the next reset, not an error of either mission
+    idle_watchdog: int = 0
 
     ERRORS = ("crc_errors", "retries", "stale", "board_errors", "watchdog")
 

@@ -190,10 +190,32 @@ class WireLink(FirmwareLink):
         self.info = info
         return info
 
+    def _drain_idle(self) -> None:
+        """What the board said while no mission ran (since the last answer): its watchdog's report
+        that the host fell silent after a mission ended counts as ``idle_watchdog``; anything
+        else is as unexpected as ever (``stale``)."""
+        while True:
+            try:
+                reply = self._recv_msg(0.0)
+            except DecodeError:
+                self.counters.crc_errors += 1
+                continue
+            if reply is None:
+                return
+            self.counters.received += 1
+            if reply[0] == MsgType.ERROR:
+                _, rec = codec.decode_msg(reply)
+                if int(rec["code"]) == ErrCode.WATCHDOG:
+                    self.counters.idle_watchdog += 1
+                    continue
+            self.counters.stale += 1
+
     def _reset_impl(self, config: np.ndarray) -> None:
         self._tick = None
         if self.info is None:
             self.handshake()
+        else:
+            self._drain_idle()
         msg = codec.encode_msg(MsgType.RESET, config)
         reply = self._transact(msg, MsgType.READY, None, self._handshake_try_s, _HANDSHAKE_RETRIES,
                                self.opts.handshake_timeout_s)
