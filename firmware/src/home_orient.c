@@ -51,6 +51,8 @@
 #define ESCAPE_RADIUS_MM 150.0f   /* a sideways escape: an arc of this radius      */
 #define ESCAPE_MAX_MM 200.0f      /* one escape move at most this long             */
 #define ESCAPE_FREE_MM 60.0f      /* the end it drives toward keeps this clear     */
+#define LINE_MARGIN_MM 10.0f      /* the sweep stops for a wall line this near     */
+#define LINE_REACH_MM 200.0f      /* a wall seen may reach this far on unseen     */
 #define ARC_BAND_MM 30.0f         /* an arc's path: the half width plus this       */
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
 #define ESCAPE_SPEED_MM_S 120.0f  /* chosen: slow, so a wall unseen costs no bump  */
@@ -69,6 +71,9 @@ void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
     o->leg = 0u;
     o->reserved[0] = o->reserved[1] = o->reserved[2] = 0u;
     o->leg_mm = 0.0f;
+    o->near_mm = 65535.0f;
+    o->near_x_mm = 0.0f;
+    o->near_y_mm = 0.0f;
     o->x0_mm = odo->x_mm;
     o->y0_mm = odo->y_mm;
     o->h0_rad = odo->heading_rad;
@@ -154,6 +159,24 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
             o->c4 += len * (c2 * c2 - s2 * s2);
             o->s4 += len * (2.0f * c2 * s2);
             o->w += len;
+            {
+                /* the wall's line near the robot: its nearest point, if
+                 * within LINE_REACH_MM of the stretch seen (the wall may go
+                 * on unseen into a blind sector between the rangers) */
+                float qx = odo->x_mm - o->x0_mm - o->anchor_x_mm[i];
+                float qy = odo->y_mm - o->y0_mm - o->anchor_y_mm[i];
+                float t = qx * u + qy * v; /* along the stretch from its start */
+                if (t > -LINE_REACH_MM && t < len + LINE_REACH_MM) {
+                    float fx = o->anchor_x_mm[i] + t * u - (odo->x_mm - o->x0_mm);
+                    float fy = o->anchor_y_mm[i] + t * v - (odo->y_mm - o->y0_mm);
+                    float fd = ffr_sqrtf(fx * fx + fy * fy);
+                    if (fd < o->near_mm) {
+                        o->near_mm = fd;
+                        o->near_x_mm = fx;
+                        o->near_y_mm = fy;
+                    }
+                }
+            }
         }
         o->anchor_x_mm[i] = px;
         o->anchor_y_mm[i] = py;
@@ -365,16 +388,11 @@ void ffr_orient_begin(ffr_state_t *st)
  * spent): the sweep begins here. */
 static float end_room(const ffr_state_t *st, int backward, float band);
 
-static int clear_step(ffr_state_t *st)
+/* One move away from a wall d mm off in direction (nx, ny) (body frame). */
+static void start_escape(ffr_state_t *st, float need, float d, float nx, float ny)
 {
-    const ffr_config_t *cfg = &st->cfg;
     ffr_home_orient_t *o = &st->orient;
-    float need = ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM;
-    float d, nx, ny, len;
-    if (o->escapes >= ESCAPE_TRIES || !ffr_orient_clearance(cfg, &st->ir_geom, st->ir_mm, &d, &nx, &ny) ||
-        d >= need) {
-        return 1;
-    }
+    float len;
     o->escapes++;
     if (ffr_absf(nx) >= 0.5f) {
         /* ahead or behind: straight away from it */
@@ -399,6 +417,19 @@ static int clear_step(ffr_state_t *st)
         o->goal_mm = st->odo.dist_mm + o->leg_mm;
     }
     o->phase = PH_ESCAPE;
+}
+
+static int clear_step(ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    ffr_home_orient_t *o = &st->orient;
+    float need = ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM;
+    float d, nx, ny;
+    if (o->escapes >= ESCAPE_TRIES || !ffr_orient_clearance(cfg, &st->ir_geom, st->ir_mm, &d, &nx, &ny) ||
+        d >= need) {
+        return 1;
+    }
+    start_escape(st, need, d, nx, ny);
     return 0;
 }
 
@@ -538,6 +569,16 @@ int ffr_orient_step(ffr_state_t *st)
         float sweep = (cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? -1.0f : 1.0f) * ORIENT_SWEEP_DEG * FFR_DEG;
         float done = ffr_absf(st->odo.heading_rad - o->h0_rad);
         ffr_orient_record(o, cfg, &st->odo, &st->ir_geom, st->ir_mm);
+        if (o->near_mm < ffr_orient_turn_radius_mm(cfg) + LINE_MARGIN_MM && o->escapes < ESCAPE_TRIES) {
+            /* a wall's line passes within the turning circle: away from it
+             * first, then the sweep again */
+            float c = ffr_cosf(st->odo.heading_rad), sn = ffr_sinf(st->odo.heading_rad);
+            float bx = (c * o->near_x_mm + sn * o->near_y_mm) / o->near_mm;
+            float by = (c * o->near_y_mm - sn * o->near_x_mm) / o->near_mm;
+            ffr_stop(st);
+            start_escape(st, ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM, o->near_mm, bx, by);
+            return 0;
+        }
         if (done < ffr_absf(sweep) - 2.0f * FFR_DEG) {
             /* on at full turn rate past the end: no slowing down to stop there */
             st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->h0_rad + 1.5f * sweep);
