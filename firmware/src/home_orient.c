@@ -26,6 +26,16 @@
  * odometry's frame is turned so that this direction is heading 0, square to
  * the walls (wall_direction.c relies on that), as if placed facing it.
  * Nothing of one map's distances: only "open ahead", "a wall close beside".
+ *
+ * Before all that, room to turn (phases CLEAR, ESCAPE): the home circle is
+ * wider than the room a hallway leaves, so the robot may stand closer to a
+ * wall than its turning radius (its farthest front corner). The nearest
+ * wall is judged from the five rangers now (each hit, and the line through
+ * two rangers' hits on one wall); within the radius + CLEAR_MARGIN_MM it
+ * moves away first: straight, for a wall ahead or behind; an S and back
+ * along it, for a wall beside. During the sweep, a wall's line seen within
+ * the radius (it may reach on into a blind sector between the rangers)
+ * stops the sweep for the same move, and the sweep starts again.
  */
 #include "ffr_internal.h"
 
