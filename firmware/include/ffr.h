@@ -329,10 +329,15 @@ typedef struct {
  * stretches of one ranger's hits, and the nearest hit per direction bin. */
 #define FFR_ORIENT_BINS 36         /* 10 degrees each                         */
 typedef struct {
-    uint8_t phase;                 /* sweep, centre, shift turn, shift drive, aim, turn, done */
+    uint8_t phase;                 /* sweep, centre, shift turn, shift drive, aim, turn, done, clear, escape */
     uint8_t anchor_ok[FFR_IR_COUNT];
-    uint8_t reverse;               /* the shift is driven backwards           */
-    uint8_t reserved;
+    uint8_t reverse;               /* the shift (or escape leg) is driven backwards */
+    uint8_t escapes;               /* moves made to get room to turn in place */
+    uint8_t leg;                   /* the escape's leg: 0 straight, 1-3 the S and the way back */
+    uint8_t reserved[3];
+    float leg_mm;                  /* the escape's arc legs' length           */
+    float near_mm;                 /* nearest wall line seen in the sweep, from where it stands */
+    float near_x_mm, near_y_mm;    /* its nearest point (odometry, from the robot) */
     float x0_mm, y0_mm, h0_rad;    /* odometry pose where the sweep began     */
     float dir0_rad;                /* the walls' direction (odometry), mod 90 degrees */
     float target_rad;              /* heading of the current turn             */

@@ -210,6 +210,13 @@ void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, floa
 void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_odometry_t *odo,
                        const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT]);
 void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo);
+/* the body's farthest corner from the axle midpoint (it sweeps this circle turning in place) */
+float ffr_orient_turn_radius_mm(const ffr_config_t *cfg);
+/* the nearest wall seen by the rangers now, in the body's frame: 1 if any,
+ * its distance from the axle midpoint and the unit vector toward it (single
+ * hits, and the line through two rangers' hits on one wall) */
+int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
+                         float *dist_mm, float *nx, float *ny);
 
 /* route.c: the route program interpreter. */
 void ffr_route_begin(ffr_state_t *st, uint8_t pc);

@@ -26,6 +26,16 @@
  * odometry's frame is turned so that this direction is heading 0, square to
  * the walls (wall_direction.c relies on that), as if placed facing it.
  * Nothing of one map's distances: only "open ahead", "a wall close beside".
+ *
+ * Before all that, room to turn (phases CLEAR, ESCAPE): the home circle is
+ * wider than the room a hallway leaves, so the robot may stand closer to a
+ * wall than its turning radius (its farthest front corner). The nearest
+ * wall is judged from the five rangers now (each hit, and the line through
+ * two rangers' hits on one wall); within the radius + CLEAR_MARGIN_MM it
+ * moves away first: straight, for a wall ahead or behind; an S and back
+ * along it, for a wall beside. During the sweep, a wall's line seen within
+ * the radius (it may reach on into a blind sector between the rangers)
+ * stops the sweep for the same move, and the sweep starts again.
  */
 #include "ffr_internal.h"
 
@@ -42,7 +52,23 @@
  * each side), not by a wall's end off to the side at a junction */
 #define CENTRE_BAND_MM 40.0f
 
-enum { PH_SWEEP = 0, PH_CENTRE = 1, PH_SHIFT_TURN = 2, PH_SHIFT_DRIVE = 3, PH_AIM = 4, PH_TURN = 5, PH_DONE = 6 };
+/* room to turn in place: the body's farthest corner plus this (chosen: the
+ * rangers' noise at 10-20 cm is a few mm; 20 mm leaves room for it) */
+#define CLEAR_MARGIN_MM 20.0f
+#define CLEAR_LINE_MAX_MM 400.0f  /* two hits farther apart: not one wall          */
+#define CLEAR_LINE_MIN_MM 20.0f   /* two hits closer: no direction between them     */
+#define CLEAR_RANGE_MM 350.0f     /* a hit farther than this is no threat          */
+#define ESCAPE_RADIUS_MM 150.0f   /* a sideways escape: an arc of this radius      */
+#define ESCAPE_MAX_MM 200.0f      /* one escape move at most this long             */
+#define ESCAPE_FREE_MM 60.0f      /* the end it drives toward keeps this clear     */
+#define LINE_MARGIN_MM 10.0f      /* the sweep stops for a wall line this near     */
+#define LINE_REACH_MM 200.0f      /* a wall seen may reach this far on unseen     */
+#define ARC_BAND_MM 30.0f         /* an arc's path: the half width plus this       */
+#define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
+#define ESCAPE_SPEED_MM_S 120.0f  /* chosen: slow, so a wall unseen costs no bump  */
+
+enum { PH_SWEEP = 0, PH_CENTRE = 1, PH_SHIFT_TURN = 2, PH_SHIFT_DRIVE = 3, PH_AIM = 4, PH_TURN = 5, PH_DONE = 6,
+       PH_CLEAR = 7, PH_ESCAPE = 8 };
 
 static const float k_bin_rad = 2.0f * FFR_PI / (float)FFR_ORIENT_BINS;
 
@@ -51,7 +77,13 @@ void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
     int i;
     o->phase = PH_SWEEP;
     o->reverse = 0u;
-    o->reserved = 0u;
+    o->escapes = 0u;
+    o->leg = 0u;
+    o->reserved[0] = o->reserved[1] = o->reserved[2] = 0u;
+    o->leg_mm = 0.0f;
+    o->near_mm = 65535.0f;
+    o->near_x_mm = 0.0f;
+    o->near_y_mm = 0.0f;
     o->x0_mm = odo->x_mm;
     o->y0_mm = odo->y_mm;
     o->h0_rad = odo->heading_rad;
@@ -137,6 +169,24 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
             o->c4 += len * (c2 * c2 - s2 * s2);
             o->s4 += len * (2.0f * c2 * s2);
             o->w += len;
+            {
+                /* the wall's line near the robot: its nearest point, if
+                 * within LINE_REACH_MM of the stretch seen (the wall may go
+                 * on unseen into a blind sector between the rangers) */
+                float qx = odo->x_mm - o->x0_mm - o->anchor_x_mm[i];
+                float qy = odo->y_mm - o->y0_mm - o->anchor_y_mm[i];
+                float t = qx * u + qy * v; /* along the stretch from its start */
+                if (t > -LINE_REACH_MM && t < len + LINE_REACH_MM) {
+                    float fx = o->anchor_x_mm[i] + t * u - (odo->x_mm - o->x0_mm);
+                    float fy = o->anchor_y_mm[i] + t * v - (odo->y_mm - o->y0_mm);
+                    float fd = ffr_sqrtf(fx * fx + fy * fy);
+                    if (fd < o->near_mm) {
+                        o->near_mm = fd;
+                        o->near_x_mm = fx;
+                        o->near_y_mm = fy;
+                    }
+                }
+            }
         }
         o->anchor_x_mm[i] = px;
         o->anchor_y_mm[i] = py;
@@ -261,10 +311,170 @@ void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, floa
     }
 }
 
+float ffr_orient_turn_radius_mm(const ffr_config_t *cfg)
+{
+    return ffr_sqrtf(cfg->body_front_mm * cfg->body_front_mm + cfg->body_half_width_mm * cfg->body_half_width_mm);
+}
+
+int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
+                         float *dist_mm, float *nx, float *ny)
+{
+    /* pairs of rangers that see one wall: a side's two, the front's three, the rear's two */
+    static const uint8_t pairs[6][2] = {{FFR_IR_LF, FFR_IR_LR}, {FFR_IR_RF, FFR_IR_RR}, {FFR_IR_CF, FFR_IR_LF},
+                                        {FFR_IR_CF, FFR_IR_RF}, {FFR_IR_LF, FFR_IR_RF}, {FFR_IR_LR, FFR_IR_RR}};
+    int ok[FFR_IR_COUNT];
+    int i, k, found = 0;
+    float best = 65535.0f;
+    *nx = 0.0f;
+    *ny = 0.0f;
+    float hx[FFR_IR_COUNT], hy[FFR_IR_COUNT];
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        float x = g->hit_x_mm[i], y = g->hit_y_mm[i], r;
+        ok[i] = ffr_ir_valid(cfg, ir_mm[i]) && ir_mm[i] <= CLEAR_RANGE_MM;
+        if (!ok[i]) {
+            continue;
+        }
+        if (ir_mm[i] <= cfg->ir_min_mm + 0.5f) {
+            /* at the bottom of the ranger's span: the wall is anywhere up to
+             * ir_min_mm off the ranger; half of it */
+            x = cfg->ir_x_mm[i] + 0.5f * cfg->ir_min_mm * g->beam_cos[i];
+            y = cfg->ir_y_mm[i] + 0.5f * cfg->ir_min_mm * g->beam_sin[i];
+        }
+        hx[i] = x;
+        hy[i] = y;
+        r = ffr_sqrtf(x * x + y * y);
+        if (r > 1.0f && r < best) {
+            best = r;
+            *nx = x / r;
+            *ny = y / r;
+            found = 1;
+        }
+    }
+    for (k = 0; k < 6; ++k) {
+        int a = pairs[k][0], b = pairs[k][1];
+        float ax, ay, ex, ey, len, t, fx, fy, d;
+        if (!ok[a] || !ok[b]) {
+            continue;
+        }
+        ax = hx[a];
+        ay = hy[a];
+        ex = hx[b] - ax;
+        ey = hy[b] - ay;
+        len = ffr_sqrtf(ex * ex + ey * ey);
+        if (len < CLEAR_LINE_MIN_MM || len > CLEAR_LINE_MAX_MM) {
+            continue;
+        }
+        /* the foot of the perpendicular from the axle midpoint to the line
+         * through both hits: near them, the wall's nearest point */
+        t = -(ax * ex + ay * ey) / (len * len);
+        if (t < -0.25f || t > 1.25f) {
+            continue;
+        }
+        fx = ax + t * ex;
+        fy = ay + t * ey;
+        d = ffr_sqrtf(fx * fx + fy * fy);
+        if (d > 1.0f && d < best) {
+            best = d;
+            *nx = fx / d;
+            *ny = fy / d;
+            found = 1;
+        }
+    }
+    *dist_mm = best;
+    return found;
+}
+
 void ffr_orient_begin(ffr_state_t *st)
 {
     ffr_orient_reset(&st->orient, &st->odo);
+    st->orient.phase = PH_CLEAR;
     st->state = FFR_ST_ORIENT;
+}
+
+/* Room to turn in place? If a wall is within the body's turning radius (+
+ * a margin), one move away from it: straight forward or back when the wall
+ * is mostly ahead or behind, else an arc turning away from it (forward if
+ * the front is free, else backward). 1 when there is room (or the moves are
+ * spent): the sweep begins here. */
+static float end_room(const ffr_state_t *st, int backward, float band);
+
+/* One move away from a wall d mm off in direction (nx, ny) (body frame). */
+static void start_escape(ffr_state_t *st, float need, float d, float nx, float ny)
+{
+    ffr_home_orient_t *o = &st->orient;
+    float len;
+    o->escapes++;
+    if (ffr_absf(nx) >= 0.5f) {
+        /* ahead or behind: straight away from it */
+        o->reverse = nx > 0.0f;
+        o->leg = 0u;
+        o->target_rad = 0.0f; /* curvature (1/mm): straight */
+        len = (need - d) / ffr_absf(nx) + 10.0f;
+        o->goal_mm = st->odo.dist_mm + (len < ESCAPE_MAX_MM ? len : ESCAPE_MAX_MM);
+    } else {
+        /* beside: an S away from it (an arc turning away, one turning back:
+         * the heading as before, 2 R (1 - cos a) farther from the wall),
+         * forward if the front is free, else backward; then straight back
+         * along the wall to where it began */
+        float lat = need - d + 10.0f;
+        float c = 1.0f - lat / (2.0f * ESCAPE_RADIUS_MM);
+        float a = ffr_atan2f(ffr_sqrtf(1.0f - c * c), c);
+        o->reverse = end_room(st, 1, ARC_BAND_MM) > end_room(st, 0, ARC_BAND_MM);
+        o->leg = 1u;
+        o->leg_mm = ESCAPE_RADIUS_MM * a;
+        /* turning away from the wall's side, either way driven */
+        o->target_rad = (ny > 0.0f ? -1.0f : 1.0f) / ESCAPE_RADIUS_MM;
+        o->goal_mm = st->odo.dist_mm + o->leg_mm;
+    }
+    o->phase = PH_ESCAPE;
+}
+
+static int clear_step(ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    ffr_home_orient_t *o = &st->orient;
+    float need = ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM;
+    float d, nx, ny;
+    if (o->escapes >= ESCAPE_TRIES || !ffr_orient_clearance(cfg, &st->ir_geom, st->ir_mm, &d, &nx, &ny) ||
+        d >= need) {
+        return 1;
+    }
+    start_escape(st, need, d, nx, ny);
+    return 0;
+}
+
+/* Free floor from the axle midpoint to the nearest hit in the body's path
+ * (its half width + band each side), ahead (backward = 0) or behind. */
+static float end_room(const ffr_state_t *st, int backward, float band)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    float room = 65535.0f;
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        float x = st->ir_geom.hit_x_mm[i], y = st->ir_geom.hit_y_mm[i];
+        if (!ffr_ir_valid(cfg, st->ir_mm[i])) {
+            continue;
+        }
+        if (st->ir_mm[i] <= cfg->ir_min_mm + 0.5f) {
+            x = cfg->ir_x_mm[i] + 0.5f * cfg->ir_min_mm * st->ir_geom.beam_cos[i];
+            y = cfg->ir_y_mm[i] + 0.5f * cfg->ir_min_mm * st->ir_geom.beam_sin[i];
+        }
+        if (backward) {
+            x = -x;
+        }
+        if (x > 0.0f && ffr_absf(y) < cfg->body_half_width_mm + band && x < room) {
+            room = x;
+        }
+    }
+    return room;
+}
+
+/* the end the escape drives toward is free */
+static int escape_free(const ffr_state_t *st)
+{
+    /* an arc swings the body's corners out: a wider band */
+    float band = st->orient.target_rad != 0.0f ? ARC_BAND_MM : BAND_MARGIN_MM;
+    return end_room(st, st->orient.reverse & 1u, band) > st->cfg.body_front_mm + ESCAPE_FREE_MM;
 }
 
 /* odometry's frame turned by -rot about its origin: `rot` becomes heading 0 */
@@ -329,11 +539,56 @@ int ffr_orient_step(ffr_state_t *st)
     const ffr_config_t *cfg = &st->cfg;
     ffr_home_orient_t *o = &st->orient;
     ffr_stop(st);
+    if (o->phase == PH_ESCAPE) {
+        float left = o->goal_mm - st->odo.dist_mm;
+        if (left > 0.0f && escape_free(st)) {
+            float v = ffr_stopping_speed(left, ESCAPE_SPEED_MM_S);
+            st->cmd_v_mm_s = o->reverse ? -v : v;
+            st->cmd_w_rad_s = st->cmd_v_mm_s * o->target_rad;
+            return 0;
+        }
+        if (left <= 0.0f && o->leg == 1u) {
+            /* the S's second arc: turning back */
+            o->leg = 2u;
+            o->target_rad = -o->target_rad;
+            o->goal_mm = st->odo.dist_mm + o->leg_mm;
+            return 0;
+        }
+        if (left <= 0.0f && o->leg == 2u) {
+            /* straight back along the wall, as far as the S went along it */
+            o->leg = 3u;
+            o->reverse ^= 1u;
+            o->target_rad = 0.0f;
+            o->goal_mm = st->odo.dist_mm + 2.0f * ESCAPE_RADIUS_MM * ffr_sinf(o->leg_mm / ESCAPE_RADIUS_MM);
+            return 0;
+        }
+        o->phase = PH_CLEAR; /* look again (next tick: the rangers from here) */
+        return 0;
+    }
+    if (o->phase == PH_CLEAR) {
+        uint8_t tries = o->escapes;
+        if (!clear_step(st)) {
+            return 0;
+        }
+        /* room to turn: the sweep starts from here */
+        ffr_orient_reset(o, &st->odo);
+        o->escapes = tries;
+    }
     if (o->phase == PH_SWEEP) {
         /* toward the side the route wants its wall on: it is usually the way back */
         float sweep = (cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? -1.0f : 1.0f) * ORIENT_SWEEP_DEG * FFR_DEG;
         float done = ffr_absf(st->odo.heading_rad - o->h0_rad);
         ffr_orient_record(o, cfg, &st->odo, &st->ir_geom, st->ir_mm);
+        if (o->near_mm < ffr_orient_turn_radius_mm(cfg) + LINE_MARGIN_MM && o->escapes < ESCAPE_TRIES) {
+            /* a wall's line passes within the turning circle: away from it
+             * first, then the sweep again */
+            float c = ffr_cosf(st->odo.heading_rad), sn = ffr_sinf(st->odo.heading_rad);
+            float bx = (c * o->near_x_mm + sn * o->near_y_mm) / o->near_mm;
+            float by = (c * o->near_y_mm - sn * o->near_x_mm) / o->near_mm;
+            ffr_stop(st);
+            start_escape(st, ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM, o->near_mm, bx, by);
+            return 0;
+        }
         if (done < ffr_absf(sweep) - 2.0f * FFR_DEG) {
             /* on at full turn rate past the end: no slowing down to stop there */
             st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->h0_rad + 1.5f * sweep);

@@ -2,7 +2,7 @@
 
 Run from the repository root (docs/firmware.md quotes what these print):
 
-    .venv/bin/python -m tests.scenario.start_sweep poses [--n 24] [--seed 0] [--noise none]
+    .venv/bin/python -m tests.scenario.start_sweep poses [--n 24] [--seed 0] [--noise none] [--anywhere]
     .venv/bin/python -m tests.scenario.start_sweep calibration [--noise none] [--seed 0]
 
 ``poses``: for each room, ``n`` headings evenly over 0-360 degrees (each
@@ -23,6 +23,7 @@ import numpy as np
 
 from harness.loop import run_mission
 from harness.scenario import Scenario, make_scenario
+from harness.start_pose import start_problem
 from sim_plant.arena import Arena, load_arena
 from sim_plant.robot import load_robot
 
@@ -40,11 +41,14 @@ def turn_radius_m() -> float:
 
 
 def start_poses(n: int, seed: int, arena: Arena | None = None,
-                centre: bool = False) -> list[tuple[float, float, float]]:
+                centre: bool = False, anywhere: bool = False) -> list[tuple[float, float, float]]:
     """n start poses: heading k*360/n plus a uniform jitter within its slot, position uniform in the
     home circle where the robot can turn in place (drawn from one seeded generator); with
-    ``centre``, at the circle's centre."""
+    ``anywhere``, uniform over the whole circle wherever the body's footprint at that heading
+    touches no wall (as ``harness.start_pose.draw_start``); with ``centre``, at the circle's
+    centre."""
     arena = arena or load_arena()
+    robot = load_robot()
     rng = np.random.default_rng(seed)
     hx, hy = arena.home_center
     need = turn_radius_m() + TURN_MARGIN_M
@@ -55,7 +59,9 @@ def start_poses(n: int, seed: int, arena: Arena | None = None,
             r = arena.home_radius * math.sqrt(rng.uniform(0.0, 1.0))
             a = rng.uniform(0.0, 2.0 * math.pi)
             x, y = hx + r * math.cos(a), hy + r * math.sin(a)
-            if arena.wall_distance(x, y) >= need:
+            if anywhere and start_problem(arena, robot, (x, y, heading)) is None:
+                break
+            if not anywhere and arena.wall_distance(x, y) >= need:
                 break
         else:
             x, y = hx, hy
@@ -96,12 +102,14 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--noise", default="none")
     ap.add_argument("--rooms", default="1,2,3,4")
     ap.add_argument("--centre", action="store_true", help="poses: every start at the home circle's centre")
+    ap.add_argument("--anywhere", action="store_true",
+                    help="poses: anywhere in the circle where the footprint fits (not only with room to turn)")
     a = ap.parse_args(argv)
     rooms = [int(r) for r in a.rooms.split(",")]
     scns: list[Scenario] = []
     if a.what == "poses":
         for room in rooms:
-            for pose in start_poses(a.n, a.seed + room, centre=a.centre):
+            for pose in start_poses(a.n, a.seed + room, centre=a.centre, anywhere=a.anywhere):
                 scns.append(make_scenario(room=room, start=pose, noise=a.noise, seed=a.seed))
     else:
         for room in rooms:
