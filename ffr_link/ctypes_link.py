@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import ctypes
-import os
 from functools import lru_cache
 from pathlib import Path
 
@@ -27,13 +26,10 @@ def library_path(explicit: str | None = None) -> Path:
     installed ffr, the build in the user's cache (compiled from the shipped sources on first use)."""
     if explicit:
         return Path(explicit)
-    env = os.environ.get("FFR_FIRMWARE_LIB")
-    if env:
-        return Path(env)
-    from ffr_firmware.build import BuildError, host_build
+    from ffr_firmware.build import BuildError, locate
 
     try:
-        return host_build("library")
+        return locate("library", "FFR_FIRMWARE_LIB")
     except BuildError as exc:
         raise LinkError(f"firmware library: {exc}") from None
 

@@ -132,3 +132,10 @@ def host_build(kind: str) -> Path:
     if not (where / name).exists():
         build(tree, where)
     return where / name
+
+
+def locate(kind: str, env_var: str) -> Path:
+    """Our firmware's ``library`` or ``host_board`` as the harness runs it: ``$env_var`` when set,
+    else ``host_build(kind)``."""
+    env = os.environ.get(env_var)
+    return Path(env) if env else host_build(kind)

@@ -30,6 +30,7 @@ from harness.cli_args import (
     _seed,
     _setting,
     add_arena_options,
+    firmware_link,
 )
 from sim_plant.errors import FfrInputError
 
@@ -221,11 +222,9 @@ def _execute(args: argparse.Namespace) -> int:
         raise UsageError(bad)
     if getattr(args, "firmware", None):
         if args.command == "b2b":
-            args.reference = f"ctypes:{args.firmware}"  # the library under test is the reference side
-        elif args.link != "ctypes:":
-            raise UsageError(f"--firmware = {args.firmware!r}: runs in-process; leave --link {args.link} out")
+            args.reference = firmware_link("ctypes:", args.firmware)  # the library is the reference side
         else:
-            args.link = f"ctypes:{args.firmware}"
+            args.link = firmware_link(args.link, args.firmware)
     if args.command == "b2b":
         return _execute_b2b(args)
     if args.command == "sweep":

@@ -120,3 +120,12 @@ def _furniture(text: str) -> int:
     except ValueError:
         raise argparse.ArgumentTypeError(f"--furniture = {text!r}: expected a count 0 .. {MAX_PIECES}") from None
     return v
+
+
+def firmware_link(link: str, firmware: str | None) -> str:
+    """``--firmware LIB.so`` is ``--link ctypes:LIB.so``; with another link it is a usage error."""
+    if not firmware or link == f"ctypes:{firmware}":  # (a sweep checks its arguments twice)
+        return link
+    if link != "ctypes:":
+        raise UsageError(f"--firmware = {firmware!r}: runs in-process; leave --link {link} out")
+    return f"ctypes:{firmware}"

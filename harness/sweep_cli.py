@@ -10,7 +10,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from harness.cli_args import _setting, add_arena_options
+from harness.cli_args import _setting, add_arena_options, firmware_link
 from sim_plant.errors import FfrInputError
 
 
@@ -91,10 +91,7 @@ def _check(args: argparse.Namespace) -> None:
     from sim_plant.arena import load_arena
     from sim_plant.robot import load_robot, override
 
-    if args.firmware:
-        if args.link != "ctypes:":
-            raise UsageError(f"--firmware = {args.firmware!r}: runs in-process; leave --link {args.link} out")
-        args.link = f"ctypes:{args.firmware}"
+    args.link = firmware_link(args.link, args.firmware)
     from sim_plant.sensors import load_noise_profile
 
     if args.n_candles < 1:

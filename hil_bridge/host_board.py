@@ -35,13 +35,10 @@ REPO = Path(__file__).resolve().parents[1]
 
 def board_program() -> Path:
     """``$FFR_HOST_BOARD``, else a checkout's build, else the installed ffr's (built on first use)."""
-    env = os.environ.get("FFR_HOST_BOARD")
-    if env:
-        return Path(env)
-    from ffr_firmware.build import BuildError, host_build
+    from ffr_firmware.build import BuildError, locate
 
     try:
-        return host_build("host_board")
+        return locate("host_board", "FFR_HOST_BOARD")
     except BuildError as exc:
         raise LinkError(f"host board program: {exc}") from None
 

@@ -182,3 +182,11 @@ def test_a_parquet_sweep_holds_the_csv_rows(tmp_path) -> None:
     for got, want in zip(table, rows, strict=True):
         assert list(got) == list(want)
         assert {k: "" if v is None else str(v) for k, v in got.items()} == want
+
+
+def test_a_sweep_runs_another_firmware_library(capsys) -> None:
+    from ffr_link.ctypes_link import DEFAULT_LIB
+
+    assert main(["sweep", "--rooms", "1", "--candles", "default", "--firmware", str(DEFAULT_LIB),
+                 "--workers", "1", "--no-progress"]) == 0
+    assert "1 missions: 1 succeeded" in capsys.readouterr().out
