@@ -65,7 +65,7 @@ def _cc() -> str:
     return os.environ.get("CC", "cc")
 
 
-def _cache_root() -> Path:
+def cache_root() -> Path:
     env = os.environ.get("FFR_CACHE")
     if env:
         return Path(env)
@@ -128,7 +128,7 @@ def host_build(kind: str) -> Path:
     if CHECKOUT is not None:
         return CHECKOUT / "build" / "host" / name
     tree = Tree(HERE)
-    where = _cache_root() / _key(tree, _cc())
+    where = cache_root() / _key(tree, _cc())
     if not (where / name).exists():
         build(tree, where)
     return where / name

@@ -223,10 +223,20 @@ def _link(url: str) -> Any:
     return _LINKS[url]
 
 
-def run_job(job: dict[str, Any]) -> dict[str, Any]:
-    """One mission; a row of results. Bad settings become an 'error' row, not a crash."""
+def run_job(job: dict[str, Any], local: dict[str, str] | None = None) -> dict[str, Any]:
+    """One mission; a row of results. Bad settings become an 'error' row, not a crash.
+
+    ``local`` maps the client's file paths to this worker's copies (``harness.sweep_payload``); the row
+    keeps the client's paths.
+    """
     from harness.loop import run_mission
     from harness.scenario import make_scenario
+    from harness.sweep_payload import local_name, localise_link
+
+    here = local or {}
+
+    def mine(name: Any) -> Any:  # this worker's copy of a file the client named
+        return local_name(name, here)
 
     jitter = float(job.get("arena_jitter") or 0.0)
     row: dict[str, Any] = {"id": job["id"], "room": job["room"], "candle_x": job["candle"][0],
@@ -237,13 +247,13 @@ def run_job(job: dict[str, Any]) -> dict[str, Any]:
     row |= job["params"]
     start = job.get("start")
     try:
-        arena, robot = _world(job.get("arena"), job.get("robot_file"))
+        arena, robot = _world(mine(job.get("arena")), mine(job.get("robot_file")))
         scn = make_scenario(arena=arena, robot=robot, candle=tuple(job["candle"]), seed=job["seed"],
-                            noise=job["noise"], firmware=job["firmware"], robot_overrides=job["robot"],
+                            noise=mine(job["noise"]), firmware=job["firmware"], robot_overrides=job["robot"],
                             source="sweep", start=tuple(start) if isinstance(start, list) else start,
                             arena_jitter=jitter, furniture=int(job.get("furniture") or 0))
         row |= {"start_x": scn.start[0], "start_y": scn.start[1], "start_heading_deg": math.degrees(scn.start[2])}
-        res, _ = run_mission(scn, _link(job["link"]), record=False)
+        res, _ = run_mission(scn, _link(localise_link(job["link"], here)), record=False)
     except FfrInputError as exc:
         blank = {k: None for k in ROW_FIELDS if k not in row}  # every column there, as for a mission that ran
         return row | blank | {"outcome": "error", "success": False, "detail": str(exc)}
@@ -256,11 +266,15 @@ def run_job(job: dict[str, Any]) -> dict[str, Any]:
     }
 
 
-def run_chunk(jobs: list[dict[str, Any]]) -> list[dict[str, Any]]:
+def run_chunk(jobs: list[dict[str, Any]], payload: Any = None) -> list[dict[str, Any]]:
+    """A chunk's rows; ``payload`` (a ``sweep_payload.Payload``) brings the files the jobs name."""
+    from harness.sweep_payload import materialise
+
+    local = materialise(payload)
     rows = []
     for j in jobs:
         _test_hold(j["id"])
-        rows.append(run_job(j))
+        rows.append(run_job(j, local))
     return rows
 
 
@@ -350,7 +364,12 @@ def run_on(client: Any, jobs: Sequence[dict[str, Any]], workers: int | None = No
 
     n_workers = max(1, len(client.scheduler_info().get("workers", {})) or (workers or 1))
     chunks = chunked(jobs, n_workers)
-    futures = client.map(run_chunk, chunks, pure=False)
+    from harness.sweep_payload import collect
+
+    # the files the missions read travel with the work: a worker needs only `pip install ffr`
+    payload = collect(jobs)
+    shipped = client.scatter(payload, broadcast=True, hash=False) if payload else None
+    futures = client.map(run_chunk, chunks, pure=False, payload=shipped)
     rows: list[dict[str, Any]] = []
     try:
         for fut in as_completed(futures):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import csv
 import json
+import os
 import socket
 import subprocess
 import sys
@@ -16,6 +17,8 @@ from harness import sweep as sw
 from harness.cli import main
 
 REPO = Path(__file__).resolve().parents[2]
+# a team's own noise file (a profile of one part: only ranger scatter)
+FLOOR_NOISE = "[floor]\n[floor.ir]\nsigma = 10.0\n"
 
 
 def test_parse_param() -> None:
@@ -71,35 +74,74 @@ def test_forked_local_processes_give_the_serial_results() -> None:
     assert rows == sw.run_local_serial(jobs)
 
 
-def test_scheduler_address_runs_on_that_cluster(tmp_path) -> None:
-    """`--scheduler tcp://127.0.0.1:PORT`: a scheduler and two `dask worker` processes, all on loopback."""
+def test_a_remote_cluster_runs_a_teams_library_it_never_saw(tmp_path) -> None:
+    """`--scheduler tcp://...` with a scheduler and two `dask worker` processes started from another
+    directory, with their own cache: the team's library and noise file travel with the work (the workers
+    hold the same bytes in their cache afterwards), and the rows equal those of a local run."""
+    from ffr_link.ctypes_link import DEFAULT_LIB
+
+    client_dir, worker_dir, worker_cache = tmp_path / "team", tmp_path / "elsewhere", tmp_path / "wcache"
+    for d in (client_dir, worker_dir):
+        d.mkdir()
+    lib = client_dir / "libteam.so"
+    lib.write_bytes(Path(DEFAULT_LIB).read_bytes())
+    noise = client_dir / "floor.toml"
+    noise.write_text(FLOOR_NOISE)
     with socket.socket() as s:  # a free loopback port
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
     addr = f"tcp://127.0.0.1:{port}"
     bindir = Path(sys.executable).parent
+    env = {k: v for k, v in os.environ.items() if k not in ("FFR_FIRMWARE_LIB", "FFR_HOST_BOARD")}
+    env["FFR_CACHE"] = str(worker_cache)
     procs = [subprocess.Popen([str(bindir / "dask"), "scheduler", "--host", "127.0.0.1", "--port", str(port),
-                               "--no-dashboard"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+                               "--no-dashboard"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                              cwd=worker_dir, env=env)]
     try:
         time.sleep(1.5)
         for _ in range(2):
             procs.append(subprocess.Popen([str(bindir / "dask"), "worker", addr, "--nthreads", "1",
                                            "--host", "127.0.0.1", "--no-dashboard"],
-                                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=REPO))
+                                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                          cwd=worker_dir, env=env))
         from dask.distributed import Client
         with Client(addr, timeout="20s") as c:
             c.wait_for_workers(2, timeout=60)
-        out = tmp_path / "r.csv"
-        code = main(["sweep", "--scheduler", addr, "--rooms", "1", "--candles", "default", "--seeds", "0:4",
-                     "--out", str(out), "--no-progress"])
-        assert code == 0
-        rows = list(csv.DictReader(out.open()))
+        argv = ["sweep", "--rooms", "1", "--candles", "default", "--seeds", "0:4", "--firmware", str(lib),
+                "--noise", str(noise), "--no-progress"]
+        remote, local = tmp_path / "remote.csv", tmp_path / "local.csv"
+        assert main([*argv, "--scheduler", addr, "--out", str(remote)]) == 0
+        assert main([*argv, "--workers", "1", "--out", str(local)]) == 0
+        rows = list(csv.DictReader(remote.open()))
         assert len(rows) == 4 and all(r["outcome"] == "home" for r in rows)
+        assert remote.read_text() == local.read_text()  # the replay commands name the client's files
+        assert str(lib) in rows[0]["replay"]
+        shipped = {p.name: p.read_bytes() for p in (worker_cache / "shipped").glob("*/*")}
+        assert shipped["libteam.so"] == lib.read_bytes() and shipped["floor.toml"] == noise.read_bytes()
     finally:
         for p in procs:
             p.terminate()
         for p in procs:
             p.wait(timeout=30)
+
+
+def test_a_chunk_runs_on_the_shipped_files_not_the_clients_paths(tmp_path, monkeypatch) -> None:
+    """The worker side alone: the job names a library and a noise file that do not exist on this
+    machine; the payload's bytes are what runs, and the row keeps the client's names."""
+    from ffr_link.ctypes_link import DEFAULT_LIB
+    from harness.sweep_payload import Payload
+
+    monkeypatch.setenv("FFR_CACHE", str(tmp_path / "cache"))
+    lib, noise = "/nowhere/client/libteam.so", "/nowhere/client/floor.toml"
+    data, text = Path(DEFAULT_LIB).read_bytes(), FLOOR_NOISE.encode()
+    payload = Payload({lib: ("a" * 64, data), noise: ("b" * 64, text)})
+    job = sw.build_jobs(sw.SweepSpec(rooms=(1,), candles="default", seeds=(0,), noise=noise,
+                                     link=f"ctypes:{lib}"))[0]
+    row = sw.run_chunk([job], payload)[0]
+    assert row["outcome"] == "home" and row["noise"] == noise and lib in row["replay"]
+    assert (tmp_path / "cache" / "shipped" / ("a" * 64) / "libteam.so").read_bytes() == data
+    bare = sw.run_chunk([job])[0]  # without the payload the client's files are unknown here
+    assert bare["outcome"] == "error" and "/nowhere/client/floor.toml" in bare["detail"]
 
 
 def test_cli_sweep_outputs_summary_csv_plot_json(tmp_path, capsys) -> None:
