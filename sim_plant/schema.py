@@ -210,13 +210,13 @@ def _is_struct(tp: Any) -> bool:
 
 
 def _members(tp: Any) -> list[Any]:
+    """The types a union (also one inside Annotated) is made of, None left out."""
     bare, _ = _unwrap(tp)
-    if typing.get_origin(bare) in (typing.Union, _UnionType):
-        return [m for m in typing.get_args(bare) if m is not type(None)]
+    if typing.get_origin(bare) in (typing.Union, type(int | str)):
+        return [m for a in typing.get_args(bare) if a is not type(None) for m in _members(a)]
     return [tp]
 
 
-_UnionType = type(int | str)
 
 
 def _pick(tp: Any, value: Any) -> Any:
@@ -272,10 +272,8 @@ def _describe(tp: Any) -> str:
     for m in metas:
         if getattr(m, "description", None):
             return str(m.description)
-    members = _members(tp)
-    if len(members) > 1:
-        return " or ".join(_describe(m) for m in members)
-    bare, _ = _unwrap(members[0])
+    if typing.get_origin(bare) in (typing.Union, type(int | str)):
+        return " or ".join(_describe(a) for a in typing.get_args(bare) if a is not type(None))
     origin = typing.get_origin(bare)
     if origin is typing.Literal:
         return "one of " + ", ".join(str(a) for a in typing.get_args(bare))
