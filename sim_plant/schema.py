@@ -9,9 +9,9 @@ validates a parsed TOML dict against it and turns msgspec's error into our
 one-line ``FfrInputError``: ``file: table.path = value: why`` with a
 "did you mean" for a misspelt key.
 
-This module also holds the pieces every reader shares: ``read_toml`` (one line
-for an unreadable, non-UTF-8 or malformed file) and ``Reader`` (typed field
-access into a validated table). msgspec itself is imported on first use, so a
+This module also holds what every reader shares: ``read_toml`` (one line for an
+unreadable, non-UTF-8 or malformed file) and ``did_you_mean`` (the one wording
+of an unknown key). It imports msgspec only when ``check`` first runs, so a
 command that reads no file (``ffr run --help``) does not pay for it.
 """
 
@@ -29,7 +29,7 @@ from typing import Any
 
 from sim_plant.errors import FfrInputError
 
-__all__ = ["Reader", "check", "did_you_mean", "read_toml", "rule"]
+__all__ = ["check", "did_you_mean", "read_toml", "rule"]
 
 
 # -- reading files ------------------------------------------------------------------------------
@@ -55,65 +55,6 @@ def _parse_toml(text: str) -> dict[str, Any]:
     # Parsed once per content: a sweep reads the same noise profile and scoring
     # files for every mission (~7 ms each time); read_toml hands out copies.
     return tomllib.loads(text)
-
-
-# -- typed access into a (validated) table ------------------------------------------------------
-
-class Reader:
-    """Typed field access into a TOML table with one-line errors naming ``prefix + key``."""
-
-    def __init__(self, source: str, table: dict[str, Any], prefix: str = "") -> None:
-        self.source = source
-        self.table = table
-        self.prefix = prefix
-
-    def name(self, key: str) -> str:
-        return f"{self.prefix}{key}"
-
-    def get(self, key: str, default: Any = ...) -> Any:
-        if key not in self.table:
-            if default is ...:
-                raise FfrInputError(self.source, self.name(key), None, "missing")
-            return default
-        return self.table[key]
-
-    def number(self, key: str, default: Any = ..., lo: float | None = None,
-               hi: float | None = None, positive: bool = False) -> float:
-        v = self.get(key, default)
-        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
-            raise FfrInputError(self.source, self.name(key), v, "must be a finite number")
-        if positive and v <= 0:
-            raise FfrInputError(self.source, self.name(key), v, "must be > 0")
-        if lo is not None and v < lo:
-            raise FfrInputError(self.source, self.name(key), v, f"must be >= {lo}")
-        if hi is not None and v > hi:
-            raise FfrInputError(self.source, self.name(key), v, f"must be <= {hi}")
-        return float(v)
-
-    def point(self, key: str, default: Any = ...) -> tuple[float, float]:
-        v = self.get(key, default)
-        if (not isinstance(v, list | tuple) or len(v) != 2
-                or not all(isinstance(c, int | float) and not isinstance(c, bool) for c in v)):
-            raise FfrInputError(self.source, self.name(key), v, "must be a point [x, y]")
-        return float(v[0]), float(v[1])
-
-    def string(self, key: str, default: Any = ...) -> str:
-        v = self.get(key, default)
-        if not isinstance(v, str):
-            raise FfrInputError(self.source, self.name(key), v, "must be a string")
-        return v
-
-    def tables(self, key: str) -> list[Reader]:
-        v = self.get(key)
-        if not isinstance(v, list) or not v or not all(isinstance(t, dict) for t in v):
-            raise FfrInputError(self.source, self.name(key), "...", "must be a non-empty array of tables")
-        return [Reader(self.source, t, f"{self.name(key)}[{i}].") for i, t in enumerate(v)]
-
-    def sub(self, key: str) -> Reader:
-        v = self.get(key)
-        if not isinstance(v, dict):
-            raise FfrInputError(self.source, self.name(key), v, "must be a table")
-        return Reader(self.source, v, f"{self.name(key)}.")
 
 
 # -- the schema check ------------------------------------------------------------------------------
