@@ -169,10 +169,6 @@ class RobotParams:
         return self.body.length_front, -self.body.length_rear, hw, -hw
 
 
-ROBOT_SECTIONS = ("body", "track", "motor", "encoder", "ir", "line_sensor", "flame", "fans", "slip", "sides",
-                  "battery", "calibration")
-
-
 def _build(cls: type, table: Any) -> Any:
     """A model dataclass from its checked schema table (None: the dataclass's defaults)."""
     if table is None:
