@@ -27,17 +27,10 @@ from typing import Any
 import numba as nb
 import numpy as np
 
-from sim_plant.errors import FfrInputError
-from sim_plant.robot import IR_NAMES
-from sim_plant.sensors.channels import CH_ENC_L, CH_ENC_R, CH_FLAME_L, CH_FLAME_R, CH_IR, CH_LINE
+from harness.event_channels import CHANNELS, FAULTS, LIMITS, WHEELS
+from sim_plant.sensors.channels import CH_ENC_L, CH_ENC_R
 
-CHANNELS: dict[str, int] = {f"ir.{n}": CH_IR[i] for i, n in enumerate(IR_NAMES)}
-CHANNELS |= {"flame.L": CH_FLAME_L, "flame.R": CH_FLAME_R, "line": CH_LINE,
-             "encoder.L": CH_ENC_L, "encoder.R": CH_ENC_R}
-WHEELS = {"wheel.L": CH_ENC_L, "wheel.R": CH_ENC_R}
-FAULTS = ("dead", "stuck", "noisy", "slip")
-_FIELDS = {"at_s", "duration_s", "sensor", "fault", "value", "sigma", "fraction"}
-_LIMITS = {CH_LINE: (0, 1)} | {c: (0, 5000) for c in CH_IR} | {CH_FLAME_L: (0, 65535), CH_FLAME_R: (0, 65535)}
+_LIMITS = LIMITS
 
 
 @dataclass(frozen=True)
@@ -67,59 +60,15 @@ class Event:
         return d
 
 
-def _num(src: str, name: str, v: Any, lo: float, hi: float = math.inf, lo_open: bool = False) -> float:
-    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v) \
-            or v < lo or v > hi or (lo_open and v == lo):
-        rng = f"({lo:g}, {hi:g}]" if lo_open else f"[{lo:g}, {hi:g}]"
-        raise FfrInputError(src, name, v, f"must be a number in {rng}")
-    return float(v)
-
-
 def parse_events(raw: Any, source: str) -> list[Event]:
-    """Validate a scenario's ``events`` array; errors name file, field and value on one line."""
-    if not isinstance(raw, list):
-        raise FfrInputError(source, "events", raw, "must be an array of tables ([[events]])")
-    out = []
-    for i, t in enumerate(raw):
-        pre = f"events[{i}]"
-        if not isinstance(t, dict):
-            raise FfrInputError(source, pre, t, "must be a table")
-        unknown = set(t) - _FIELDS
-        if unknown:
-            k = sorted(unknown)[0]
-            raise FfrInputError(source, f"{pre}.{k}", t[k], f"unknown field (known: {', '.join(sorted(_FIELDS))})")
-        for k in ("at_s", "sensor", "fault"):
-            if k not in t:
-                raise FfrInputError(source, f"{pre}.{k}", None, "missing")
-        fault = t["fault"]
-        if fault not in FAULTS:
-            raise FfrInputError(source, f"{pre}.fault", fault, f"unknown fault (known: {', '.join(FAULTS)})")
-        sensor = t["sensor"]
-        known = WHEELS if fault == "slip" else CHANNELS
-        if sensor not in known:
-            what = "wheel" if fault == "slip" else "sensor"
-            raise FfrInputError(source, f"{pre}.sensor", sensor, f"unknown {what} for '{fault}' (known: "
-                                f"{', '.join(known)})")
-        at = _num(source, f"{pre}.at_s", t["at_s"], 0.0)
-        dur = _num(source, f"{pre}.duration_s", t["duration_s"], 0.0, lo_open=True) if "duration_s" in t \
-            else math.inf
-        for k, needed in (("value", "dead"), ("sigma", "noisy"), ("fraction", "slip")):
-            if k in t and fault != needed:
-                raise FfrInputError(source, f"{pre}.{k}", t[k], f"only for fault '{needed}'")
-        value = sigma = fraction = 0.0
-        if fault == "dead" and "value" in t:
-            lo, hi = _LIMITS.get(CHANNELS[sensor], (-2.0**31, 2.0**31 - 1))
-            value = _num(source, f"{pre}.value", t["value"], lo, hi)
-        if fault == "noisy":
-            if "sigma" not in t:
-                raise FfrInputError(source, f"{pre}.sigma", None, "missing (noisy needs sigma)")
-            sigma = _num(source, f"{pre}.sigma", t["sigma"], 0.0, lo_open=True)
-        if fault == "slip":
-            if "fraction" not in t:
-                raise FfrInputError(source, f"{pre}.fraction", None, "missing (slip needs fraction)")
-            fraction = _num(source, f"{pre}.fraction", t["fraction"], 0.0, 0.95, lo_open=True)
-        out.append(Event(at, sensor, fault, dur, value, sigma, fraction))
-    return out
+    """Validate a scenario's ``events`` array (``harness/scenario_schema.EventTable``); errors name
+    file, field and value on one line."""
+    from harness.scenario_schema import Events
+    from sim_plant.schema import check
+
+    return [Event(t.at_s, t.sensor, t.fault, math.inf if t.duration_s is None else t.duration_s,
+                  t.value or 0.0, t.sigma or 0.0, t.fraction or 0.0)
+            for t in check(raw, Events, source, "events")]
 
 
 class EventRunner:

@@ -7,7 +7,6 @@ validated with one-line errors naming the file, field and value.
 
 from __future__ import annotations
 
-import difflib
 import json
 import math
 import re
@@ -28,16 +27,14 @@ from harness.start_pose import (
     draw_start,
     stream,
 )
-from sim_plant.arena import DEFAULT_ARENA, Arena, _Reader, load_arena, read_toml
+from sim_plant.arena import DEFAULT_ARENA, Arena, load_arena
 from sim_plant.arena_jitter import check_jitter, jitter_arena
 from sim_plant.errors import FfrInputError
 from sim_plant.furniture import Piece, check_furniture, draw_furniture, furnish
 from sim_plant.robot import DEFAULT_ROBOT, RobotParams, load_robot, override
+from sim_plant.schema import check, read_toml
 from sim_plant.sensors import NoiseProfile, load_noise_profile
 from sim_plant.sensors.noise import profile_from_table, profile_to_table
-
-_TOP_KEYS = {"name", "seed", "noise", "arena", "arena_jitter", "robot", "candle", "start", "timing", "firmware",
-             "robot_overrides", "events", "stop_on_contact", "furniture", "ir_source"}
 
 # a pose (x, y m, heading rad), "random" (in the home circle), "hallway" (random in a hallway: the
 # arbitrary start mode), or None (the default)
@@ -188,73 +185,29 @@ def make_scenario(*, arena: Arena | None = None, robot: RobotParams | None = Non
     )
 
 
-def _ir_sources(r: _Reader, arena: Arena) -> tuple[IrSource, ...]:
-    out = []
-    for i, t in enumerate(r.tables("ir_source")):
-        name = f"ir_source[{i}]"
-        _known_only(t, name, {"name", "position", "height", "strength"})
-        x, y = t.point("position")
-        w, h = arena.size
-        if not (0.0 <= x <= w and 0.0 <= y <= h):
-            raise FfrInputError(r.source, f"{name}.position", [x, y],
-                                f"must be inside the arena (0..{w:g}, 0..{h:g} m)")
-        out.append(IrSource(x, y, t.number("height", arena.flame_height, lo=0.0, hi=5.0),
-                            t.number("strength", lo=0.0, hi=1000.0), t.string("name", "ir_source")))
-    return tuple(out)
-
-
-def _timing(r: _Reader) -> Timing:
-    t = Timing()
-    period = r.get("firmware_period_ms", t.firmware_period_ms)
-    if isinstance(period, bool) or not isinstance(period, int) or not 1 <= period <= 1000:
-        raise FfrInputError(r.source, "timing.firmware_period_ms", period, "must be an integer 1..1000")
-    plant = r.number("plant_dt_ms", t.plant_dt_ms, positive=True)
-    if abs(period / plant - round(period / plant)) > 1e-9:
-        raise FfrInputError(r.source, "timing.plant_dt_ms", plant,
-                            "must divide the firmware period into whole plant steps")
-    delay = r.get("start_delay_ms", 0)
-    if isinstance(delay, bool) or not isinstance(delay, int) or delay < 0:
-        raise FfrInputError(r.source, "timing.start_delay_ms", delay, "must be an integer >= 0")
-    unknown = set(r.table) - {"firmware_period_ms", "plant_dt_ms", "find_limit_s", "return_limit_s",
-                              "start_delay_ms"}
-    if unknown:
-        k = sorted(unknown)[0]
-        raise FfrInputError(r.source, f"timing.{k}", r.table[k], "unknown field")
-    return Timing(period, plant, r.number("find_limit_s", t.find_limit_s, positive=True),
-                  r.number("return_limit_s", t.return_limit_s, positive=True), delay)
-
-
-def _known_only(tab: _Reader, name: str, known: set[str]) -> None:
-    """A table's keys are all known: a typo (``positon``) must never quietly change the experiment."""
-    unknown = sorted(set(tab.table) - known)
-    if unknown:
-        k = unknown[0]
-        near = difflib.get_close_matches(k, sorted(known), n=1)
-        hint = f"did you mean {near[0]!r}? " if near else ""
-        raise FfrInputError(tab.source, f"{name}.{k}", tab.table[k],
-                            f"unknown field ({hint}known: {', '.join(sorted(known))})")
-
-
 def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec = None,
                   arena_jitter: float | None = None, furniture: int | None = None) -> Scenario:
     """Load a scenario file; ``seed``, ``start``, ``arena_jitter`` and ``furniture`` (from the CLI)
-    override the file's."""
+    override the file's. Every table is checked against ``harness/scenario_schema.ScenarioFile``
+    first (keys, types, ranges, cross-field rules); what needs the arena is checked here."""
     p = Path(path)
-    src = str(p)
-    data = read_toml(p)
-    r = _Reader(src, data)
-    unknown = set(data) - _TOP_KEYS
-    if unknown:
-        k = sorted(unknown)[0]
-        raise FfrInputError(src, k, data[k], f"unknown field (known: {', '.join(sorted(_TOP_KEYS))})")
-    base = p.parent
+    return scenario_from_dict(read_toml(p), str(p), p.parent, p.stem, seed=seed, start=start,
+                              arena_jitter=arena_jitter, furniture=furniture)
+
+
+def scenario_from_dict(data: dict[str, Any], source: str, base: Path, default_name: str = "scenario", *,
+                       seed: int | None = None, start: StartSpec = None, arena_jitter: float | None = None,
+                       furniture: int | None = None) -> Scenario:
+    """A scenario from a scenario file's tables; relative file names are relative to ``base``."""
+    from harness.scenario_schema import CandleTable, ScenarioFile
+
+    src = source
+    f: ScenarioFile = check(data, ScenarioFile, src)
 
     def rel(key: str) -> Path | None:
-        v = data.get(key)
+        v = getattr(f, key)
         if v is None:
             return None
-        if not isinstance(v, str):
-            raise FfrInputError(src, key, v, "must be a file path")
         q = (base / v) if not Path(v).is_absolute() else Path(v)
         if not q.exists():
             raise FfrInputError(src, key, v, "file not found")
@@ -262,14 +215,9 @@ def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec
 
     arena = load_arena(rel("arena"))
     robot = load_robot(rel("robot"))
-    file_seed = r.get("seed", 0)
-    if isinstance(file_seed, bool) or not isinstance(file_seed, int) or file_seed < 0:
-        raise FfrInputError(src, "seed", file_seed, "must be an integer >= 0")
-    noise: Any = r.get("noise", "none")
-    if isinstance(noise, dict):  # an inline profile: [noise.ir], [noise.flame], ...
-        noise = profile_from_table(noise, src, "noise")
-    elif not isinstance(noise, str):
-        raise FfrInputError(src, "noise", noise, "must be a profile name or file, or a table")
+    noise: Any = f.noise
+    if isinstance(data.get("noise"), dict):  # an inline profile: [noise.ir], [noise.flame], ...
+        noise = profile_from_table(data["noise"], src, "noise")
     elif noise.endswith(".toml") or "#" in noise:
         noise = str(base / noise)
     else:
@@ -277,15 +225,8 @@ def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec
             noise = load_noise_profile(noise)
         except FfrInputError as exc:  # a name the profiles file lacks: this file's field is wrong
             raise FfrInputError(src, "noise", noise, exc.why) from None
-    candle_tab = r.sub("candle") if "candle" in data else _Reader(src, {}, "candle.")
-    _known_only(candle_tab, "candle", {"room", "position"})
-    room = candle_tab.get("room", None)
-    pos = candle_tab.table.get("position")
-    if room is not None and pos is not None:
-        raise FfrInputError(src, "candle.position", pos, "give either candle.room or candle.position")
-    if room is not None and (isinstance(room, bool) or not isinstance(room, int)):
-        raise FfrInputError(src, "candle.room", room, "must be a room number")
-    candle = candle_tab.point("position") if pos is not None else None
+    c = f.candle or CandleTable()
+    room, candle = c.room, c.position
     if candle is not None:
         arena.check_candle(*candle, source=src)
     elif room is not None and room not in [rm.id for rm in arena.rooms]:
@@ -293,61 +234,39 @@ def load_scenario(path: str | Path, *, seed: int | None = None, start: StartSpec
                                                       f"(rooms: {[rm.id for rm in arena.rooms]})")
     file_start: StartSpec = None
     start_area = "home"
-    if "start" in data:
-        s = r.sub("start")
-        _known_only(s, "start", {"x", "y", "heading_deg", "random", "area"})
-        area = s.get("area", "home")
-        if area not in START_AREAS:
-            raise FfrInputError(src, "start.area", area, f"expected one of {', '.join(START_AREAS)}")
-        start_area = area
-        rnd = s.get("random", False)
-        if not isinstance(rnd, bool):
-            raise FfrInputError(src, "start.random", rnd, "must be true or false")
-        if rnd:
-            extra = sorted(set(s.table) - {"random", "area"})
-            if extra:
-                raise FfrInputError(src, f"start.{extra[0]}", s.table[extra[0]],
-                                    "give either start.random = true or a pose (x, y, heading_deg)")
+    if f.start is not None:
+        s = f.start
+        start_area = s.area
+        if s.random:
             file_start = "random"
         else:
-            file_start = (s.number("x"), s.number("y"),
-                          math.radians(s.number("heading_deg", math.degrees(arena.home_heading))))
-    jitter = r.number("arena_jitter", 0.0, lo=0.0)
-    if arena_jitter is not None:
-        jitter = arena_jitter
-    timing = _timing(r.sub("timing")) if "timing" in data else Timing()
-    fw = r.sub("firmware").table if "firmware" in data else {}
-    ro = r.sub("robot_overrides").table if "robot_overrides" in data else {}
-    stop = r.get("stop_on_contact", False)
-    if not isinstance(stop, bool):
-        raise FfrInputError(src, "stop_on_contact", stop, "must be true or false")
+            assert s.x is not None and s.y is not None  # the schema's rule
+            heading = s.heading_deg if s.heading_deg is not None else math.degrees(arena.home_heading)
+            file_start = (s.x, s.y, math.radians(heading))
+    jitter = f.arena_jitter if arena_jitter is None else arena_jitter
+    t = f.timing
+    timing = Timing() if t is None else Timing(t.firmware_period_ms, t.plant_dt_ms, t.find_limit_s,
+                                                t.return_limit_s, t.start_delay_ms)
+    fw = data.get("firmware", {})  # its keys: the firmware's config layout (harness/firmware_config.py)
+    ro = data.get("robot_overrides", {})
     events = parse_events(data.get("events", []), src)
-    file_furniture = _furniture(data.get("furniture"), src)
-    sources = _ir_sources(r, arena) if "ir_source" in data else ()
-    name = r.string("name", p.stem)
+    file_furniture: FurnitureSpec = f.furniture if not isinstance(f.furniture, list) else [
+        Piece(q.x, q.y, q.width, q.depth, math.radians(q.heading_deg)) for q in f.furniture]
+    sources = []
+    for i, q in enumerate(f.ir_source or []):
+        x, y = q.position
+        w, h = arena.size
+        if not (0.0 <= x <= w and 0.0 <= y <= h):
+            raise FfrInputError(src, f"ir_source[{i}].position", [x, y],
+                                f"must be inside the arena (0..{w:g}, 0..{h:g} m)")
+        sources.append(IrSource(x, y, arena.flame_height if q.height is None else q.height, q.strength, q.name))
+    name = f.name if f.name is not None else default_name
     return make_scenario(arena=arena, robot=robot, room=room, candle=candle,
-                         seed=file_seed if seed is None else seed, noise=noise, firmware=fw,
+                         seed=f.seed if seed is None else seed, noise=noise, firmware=fw,
                          robot_overrides=ro, start=file_start if start is None else start, timing=timing,
-                         name=name, source=src, stop_on_contact=stop, events=events, arena_jitter=jitter,
-                         furniture=file_furniture if furniture is None else furniture, start_area=start_area,
-                         ir_sources=sources)
-
-
-def _furniture(value: Any, src: str) -> FurnitureSpec:
-    """``furniture = N`` (random pieces) or ``[[furniture]]`` tables (x, y, width, depth, heading_deg)."""
-    if value is None:
-        return None
-    if isinstance(value, int) and not isinstance(value, bool):
-        return value  # the count is checked where the pieces are drawn
-    if not isinstance(value, list) or not all(isinstance(t, dict) for t in value):
-        raise FfrInputError(src, "furniture", value, "expected a count or [[furniture]] tables")
-    pieces = []
-    for k, t in enumerate(value):
-        tab = _Reader(src, t, f"furniture[{k}].")
-        _known_only(tab, f"furniture[{k}]", {"x", "y", "width", "depth", "heading_deg"})
-        pieces.append(Piece(tab.number("x"), tab.number("y"), tab.number("width", positive=True),
-                            tab.number("depth", positive=True), math.radians(tab.number("heading_deg", 0.0))))
-    return pieces
+                         name=name, source=src, stop_on_contact=f.stop_on_contact, events=events,
+                         arena_jitter=jitter, furniture=file_furniture if furniture is None else furniture,
+                         start_area=start_area, ir_sources=tuple(sources))
 
 
 # -- writing -------------------------------------------------------------------

@@ -12,11 +12,12 @@ pushed against a wall, or by knocking the candle over (then ``detail`` is
 from __future__ import annotations
 
 import math
-import tomllib
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
+
+from sim_plant.schema import check, read_toml
 
 SCORING_FILE = Path(__file__).parent / "data" / "scoring.toml"
 
@@ -33,7 +34,13 @@ class ScoringRules:
 
     @classmethod
     def load(cls, path: Path = SCORING_FILE) -> ScoringRules:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        return cls.from_dict(read_toml(path), str(path))
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any], source: str) -> ScoringRules:
+        from harness.scenario_schema import ScoringFile
+
+        check(data, ScoringFile, source)  # harness/scenario_schema.py
         return cls(
             incomplete_score=float(data["incomplete_score"]),
             room_factor={int(k): float(v) for k, v in data["room_factor"].items()},

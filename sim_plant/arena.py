@@ -7,32 +7,25 @@ bottom-left outer corner, x right, y up.
 
 from __future__ import annotations
 
-import copy
 import math
-import tomllib
 from dataclasses import dataclass, field
-from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from sim_plant.errors import CandlePlacementError, FfrInputError
+from sim_plant.file_schemas import ArenaFile
 from sim_plant.geometry import (
     point_in_convex,
     point_segment_distance,
     polygon_edges,
     thick_segment_polygon,
 )
+from sim_plant.schema import check, read_toml
 
 DEFAULT_ARENA = Path(__file__).parent / "data" / "arena_2004.toml"
 
-# Candle placement rules by rules edition (``[arena] placement`` in an arena file, docs/arena.md):
-# - "entry-depth": later editions' text: the candle's circle does not touch the doorway line, and
-#   the robot's front can move ``candle_min_depth`` (33 cm) into the room before reaching it;
-# - "door-line": the 2001 contest plan: the circle only must not touch the doorway line (a candle
-#   may stand just beside a door, as two of that plan's four candle targets do).
-PLACEMENT_RULES = ("entry-depth", "door-line")
 
 
 @dataclass(frozen=True)
@@ -97,7 +90,7 @@ class Arena:
     walls: list[Wall]
     rooms: list[Room]
     hallways: list[Hallway]
-    # Which edition's candle placement rule ``check_candle`` follows (PLACEMENT_RULES).
+    # Which edition's candle placement rule ``check_candle`` follows (PLACEMENT_RULES, file_schemas.py).
     placement: str = "entry-depth"
     # The default start heading in the home circle (rad from +x; ``[home] heading_deg``, default 90).
     home_heading: float = math.pi / 2
@@ -211,169 +204,43 @@ def _circle_meets_convex(cx: float, cy: float, r: float, poly: np.ndarray) -> bo
 
 # -- loading ---------------------------------------------------------------
 
-class _Reader:
-    """Typed field access into a TOML table with one-line errors."""
-
-    def __init__(self, source: str, table: dict[str, Any], prefix: str = "") -> None:
-        self.source = source
-        self.table = table
-        self.prefix = prefix
-
-    def _name(self, key: str) -> str:
-        return f"{self.prefix}{key}"
-
-    def get(self, key: str, default: Any = ...) -> Any:
-        if key not in self.table:
-            if default is ...:
-                raise FfrInputError(self.source, self._name(key), None, "missing")
-            return default
-        return self.table[key]
-
-    def number(self, key: str, default: Any = ..., lo: float | None = None,
-               hi: float | None = None, positive: bool = False) -> float:
-        v = self.get(key, default)
-        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
-            raise FfrInputError(self.source, self._name(key), v, "must be a finite number")
-        if positive and v <= 0:
-            raise FfrInputError(self.source, self._name(key), v, "must be > 0")
-        if lo is not None and v < lo:
-            raise FfrInputError(self.source, self._name(key), v, f"must be >= {lo}")
-        if hi is not None and v > hi:
-            raise FfrInputError(self.source, self._name(key), v, f"must be <= {hi}")
-        return float(v)
-
-    def point(self, key: str, default: Any = ...) -> tuple[float, float]:
-        v = self.get(key, default)
-        if (not isinstance(v, list) or len(v) != 2
-                or not all(isinstance(c, int | float) and not isinstance(c, bool) for c in v)):
-            raise FfrInputError(self.source, self._name(key), v, "must be a point [x, y]")
-        return float(v[0]), float(v[1])
-
-    def string(self, key: str, default: Any = ...) -> str:
-        v = self.get(key, default)
-        if not isinstance(v, str):
-            raise FfrInputError(self.source, self._name(key), v, "must be a string")
-        return v
-
-    def tables(self, key: str) -> list[_Reader]:
-        v = self.get(key)
-        if not isinstance(v, list) or not v or not all(isinstance(t, dict) for t in v):
-            raise FfrInputError(self.source, self._name(key), "...", "must be a non-empty array of tables")
-        return [_Reader(self.source, t, f"{self._name(key)}[{i}].") for i, t in enumerate(v)]
-
-    def sub(self, key: str) -> _Reader:
-        v = self.get(key)
-        if not isinstance(v, dict):
-            raise FfrInputError(self.source, self._name(key), v, "must be a table")
-        return _Reader(self.source, v, f"{self._name(key)}.")
-
-
-def read_toml(path: str | Path) -> dict[str, Any]:
-    """Read a TOML file; unreadable or malformed files raise FfrInputError."""
-    p = Path(path)
-    try:
-        text = p.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise FfrInputError(str(p), "(file)", str(p), exc.strerror or "cannot be read") from None
-    except UnicodeDecodeError as exc:
-        raise FfrInputError(str(p), "(encoding)", f"byte {exc.start}",
-                            "not UTF-8 text (TOML files are UTF-8)") from None
-    try:
-        return copy.deepcopy(_parse_toml(text))
-    except tomllib.TOMLDecodeError as exc:
-        raise FfrInputError(str(p), "(syntax)", None, str(exc)) from None
-
-
-@lru_cache(maxsize=32)
-def _parse_toml(text: str) -> dict[str, Any]:
-    # Parsed once per content: a sweep reads the same noise profile and scoring
-    # files for every mission (~7 ms each time); read_toml hands out copies.
-    return tomllib.loads(text)
-
-
-def _polygon(r: _Reader, key: str) -> np.ndarray:
-    v = r.get(key)
-    try:
-        arr = np.asarray(v, dtype=np.float64)
-    except (TypeError, ValueError):
-        arr = None
-    if arr is None or arr.ndim != 2 or arr.shape[1] != 2 or arr.shape[0] < 3:
-        raise FfrInputError(r.source, r._name(key), v, "must be a polygon [[x, y], ...] (3+ points)")
-    arr = _ccw(arr)
+def _polygon(src: str, name: str, v: Any) -> np.ndarray:
+    """A convex polygon, counter-clockwise (the schema checked its shape: 3+ points [x, y])."""
+    arr = _ccw(np.asarray(v, dtype=np.float64))
     n = arr.shape[0]
     for i in range(n):
         a, b, c = arr[i], arr[(i + 1) % n], arr[(i + 2) % n]
         if (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]) < -1e-12:
-            raise FfrInputError(r.source, r._name(key), v, "must be convex")
+            raise FfrInputError(src, name, [list(q) for q in v], "must be convex")
     return arr
-
-
-def _only(r: _Reader, known: set[str]) -> None:
-    """Unknown keys are errors: a misspelt field must never quietly fall back to its default."""
-    unknown = sorted(set(r.table) - known)
-    if unknown:
-        raise FfrInputError(r.source, r._name(unknown[0]), r.table[unknown[0]],
-                            f"unknown field (known: {', '.join(sorted(known))})")
 
 
 def load_arena(path: str | Path | None = None) -> Arena:
     p = Path(path) if path is not None else DEFAULT_ARENA
-    src = str(p)
-    root = _Reader(src, read_toml(p))
-    _only(root, {"arena", "home", "walls", "rooms", "hallways"})
-    a = root.sub("arena")
-    _only(a, {"name", "size", "wall_height", "line_width", "candle_circle_radius", "candle_min_depth",
-              "candle_base_radius", "candle_radius", "flame_height", "placement"})
-    home = root.sub("home")
-    _only(home, {"center", "radius", "heading_deg"})
-    size = a.point("size")
-    if size[0] <= 0 or size[1] <= 0:
-        raise FfrInputError(src, "arena.size", list(size), "must be positive")
-    walls = []
-    for w in root.tables("walls"):
-        _only(w, {"name", "a", "b", "t"})
-        wa, wb = w.point("a"), w.point("b")
-        if wa == wb:
-            raise FfrInputError(src, w._name("b"), list(wb), "wall has zero length")
-        walls.append(Wall(w.string("name", "wall"), wa, wb, w.number("t", positive=True)))
-    rooms = []
-    seen: set[int] = set()
-    for r in root.tables("rooms"):
-        _only(r, {"id", "name", "polygon", "door", "default_candle"})
-        rid = r.get("id")
-        if isinstance(rid, bool) or not isinstance(rid, int) or rid < 1 or rid in seen:
-            raise FfrInputError(src, r._name("id"), rid, "must be a unique integer >= 1")
-        seen.add(rid)
-        door = r.get("door")
-        if (not isinstance(door, list) or len(door) != 2
-                or not all(isinstance(q, list) and len(q) == 2 for q in door)):
-            raise FfrInputError(src, r._name("door"), door, "must be a segment [[x, y], [x, y]]")
-        door_t = ((float(door[0][0]), float(door[0][1])), (float(door[1][0]), float(door[1][1])))
-        rooms.append(Room(rid, r.string("name", f"room{rid}"), _polygon(r, "polygon"), door_t,
-                          r.point("default_candle")))
-    hallways = []
-    for h in root.tables("hallways"):
-        _only(h, {"name", "polygon"})
-        hallways.append(Hallway(h.string("name", "hallway"), _polygon(h, "polygon")))
-    placement = a.string("placement", "entry-depth")
-    if placement not in PLACEMENT_RULES:
-        raise FfrInputError(src, "arena.placement", placement, f"expected one of {', '.join(PLACEMENT_RULES)}")
+    return arena_from_dict(read_toml(p), str(p), p.stem)
+
+
+def arena_from_dict(data: dict[str, Any], source: str, default_name: str = "arena") -> Arena:
+    """An arena from an arena file's tables; ``default_name`` when ``[arena]`` names none."""
+    src = source
+    # keys, types, ranges and the cross-field rules: sim_plant/file_schemas.py
+    f: ArenaFile = check(data, ArenaFile, src)
+    a, home = f.arena, f.home
+    walls = [Wall(w.name, w.a, w.b, w.t) for w in f.walls]
+    rooms = [Room(r.id, r.name if r.name is not None else f"room{r.id}",
+                  _polygon(src, f"rooms[{i}].polygon", r.polygon), r.door, r.default_candle)
+             for i, r in enumerate(f.rooms)]
+    hallways = [Hallway(h.name, _polygon(src, f"hallways[{i}].polygon", h.polygon))
+                for i, h in enumerate(f.hallways)]
     arena = Arena(
-        name=a.string("name", p.stem), source=src, size=size,
-        wall_height=a.number("wall_height", positive=True),
-        line_width=a.number("line_width", positive=True),
-        candle_circle_radius=a.number("candle_circle_radius", positive=True),
-        candle_min_depth=a.number("candle_min_depth", 0.33, lo=0.0),
-        candle_radius=a.number("candle_radius", 0.0125, positive=True),
-        flame_height=a.number("flame_height", 0.175, positive=True),
-        candle_base_radius=a.number("candle_base_radius", 0.0, lo=0.0, hi=0.15),
-        home_center=home.point("center"), home_radius=home.number("radius", positive=True),
+        name=a.name if a.name is not None else default_name, source=src, size=a.size,
+        wall_height=a.wall_height, line_width=a.line_width, candle_circle_radius=a.candle_circle_radius,
+        candle_min_depth=a.candle_min_depth, candle_radius=a.candle_radius, flame_height=a.flame_height,
+        candle_base_radius=a.candle_base_radius, home_center=home.center, home_radius=home.radius,
         walls=walls, rooms=sorted(rooms, key=lambda rm: rm.id), hallways=hallways,
-        placement=placement,
-        home_heading=math.radians(home.number("heading_deg", 90.0)),
+        placement=a.placement, home_heading=math.radians(home.heading_deg),
     )
-    validate_arena(arena, [next(i for i, r in enumerate(root.table["rooms"]) if r.get("id") == rm.id)
-                           for rm in arena.rooms])
+    validate_arena(arena, [next(i for i, r in enumerate(f.rooms) if r.id == rm.id) for rm in arena.rooms])
     return arena
 
 

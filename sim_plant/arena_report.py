@@ -7,9 +7,10 @@ import math
 
 import numpy as np
 
-from sim_plant.arena import PLACEMENT_RULES, Arena, load_arena
+from sim_plant.arena import Arena, load_arena
 from sim_plant.arena_jitter import MAX_JITTER, MERGE_GAP, _axis_knots
 from sim_plant.errors import CandlePlacementError, FfrInputError
+from sim_plant.file_schemas import PLACEMENT_RULES
 
 
 def describe(arena: Arena) -> str:

@@ -23,26 +23,18 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from sim_plant.errors import FfrInputError
+from sim_plant.file_schemas import RealityTable
 from sim_plant.robot import IR_NAMES, Calibration, IrPose, RobotParams
+from sim_plant.schema import check
 
 Range = tuple[float, float]
 
-# (field, lo bound, hi bound) of the [lo, hi] range fields
-_RANGES: dict[str, tuple[float, float]] = {
-    "track_factor": (1.0, 3.0), "turn_radius": (1e-3, 10.0), "creep": (0.0, 0.9),
-    "floor_mu": (0.05, 2.0), "scrub_mu": (0.0, 2.0), "wall_mu": (0.0, 2.0),
-    "internal_resistance": (0.0, 10.0), "fan_current": (0.0, 10.0),
-}
-# ± half-widths (fractions, or mm / degrees for the ranger mounts)
-_SPREADS = ("motor_spread", "side_motor", "side_friction", "side_wheel_radius", "ir_mount_mm",
-            "ir_mount_deg", "cal_wheel_radius", "cal_track_width")
+# ranges and bounds of each field: sim_plant/file_schemas.py RealityTable
 # uniforms drawn per mission when a reality group is on: 8 ranges, 2 + 6 spreads, 3 x 5 mounts, 2 calibration
 N_DRAWS = 33
 
@@ -120,29 +112,9 @@ class Reality:
 
 
 def reality_from_table(src: str, prefix: str, table: Any) -> Reality:
-    if not isinstance(table, dict):
-        raise FfrInputError(src, prefix, table, "must be a table")
-    kwargs: dict[str, Any] = {}
-    for key, v in table.items():
-        name = f"{prefix}.{key}"
-        if key in _RANGES:
-            lo_b, hi_b = _RANGES[key]
-            if (not isinstance(v, list) or len(v) != 2
-                    or not all(isinstance(c, int | float) and not isinstance(c, bool)
-                               and math.isfinite(c) for c in v)):
-                raise FfrInputError(src, name, v, "must be a range [lo, hi]")
-            if not lo_b <= v[0] <= v[1] <= hi_b:
-                raise FfrInputError(src, name, v, f"must satisfy {lo_b:g} <= lo <= hi <= {hi_b:g}")
-            kwargs[key] = (float(v[0]), float(v[1]))
-        elif key in _SPREADS:
-            hi = 1.0 if not key.startswith("ir_") else 90.0
-            if isinstance(v, bool) or not isinstance(v, int | float) or not 0.0 <= v < hi:
-                raise FfrInputError(src, name, v, f"must be a number in [0, {hi:g})")
-            kwargs[key] = float(v)
-        else:
-            known = ", ".join(sorted([*_RANGES, *_SPREADS]))
-            raise FfrInputError(src, name, v, f"unknown field (known: {known})")
-    return Reality(**kwargs)
+    """A reality group from its table (checked against ``sim_plant/file_schemas.RealityTable``)."""
+    t = check(table, RealityTable, src, prefix)
+    return Reality(**{f.name: getattr(t, f.name) for f in dataclasses.fields(Reality)})
 
 
 def reality_to_table(r: Reality) -> dict[str, Any]:

@@ -9,17 +9,16 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-import difflib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from sim_plant.arena import _Reader, read_toml
 from sim_plant.errors import FfrInputError
+from sim_plant.file_schemas import RobotFile
+from sim_plant.schema import check, read_toml
 
 DEFAULT_ROBOT = Path(__file__).parent / "data" / "robot_default.toml"
 IR_NAMES = ("CF", "LF", "RF", "LR", "RR")
-MAX_FOOTPRINT = 0.31  # m, contest limit on length and width
 
 
 @dataclass
@@ -170,144 +169,37 @@ class RobotParams:
         return self.body.length_front, -self.body.length_rear, hw, -hw
 
 
-_POSITIVE = {
-    "body": ("length_front", "length_rear", "width", "height", "mass"),
-    "track": ("wheel_radius", "track_width", "L_r", "k", "L_2", "wheel_inertia"),
-    "motor": ("R", "L", "Kt", "Kb", "J", "gear_ratio", "battery", "pwm_max"),
-}
-
-
-def _section(root: _Reader, name: str, cls: type) -> Any:
-    sec = root.sub(name)
-    kwargs: dict[str, Any] = {}
-    for f in dataclasses.fields(cls):
-        if f.type in ("bool", bool):
-            v = sec.get(f.name)
-            if not isinstance(v, bool):
-                raise FfrInputError(root.source, f"{name}.{f.name}", v, "must be true or false")
-            kwargs[f.name] = v
-        elif f.type in ("int", int):
-            v = sec.get(f.name)
-            if isinstance(v, bool) or not isinstance(v, int) or v <= 0:
-                raise FfrInputError(root.source, f"{name}.{f.name}", v, "must be a positive integer")
-            kwargs[f.name] = v
-        else:
-            kwargs[f.name] = sec.number(f.name, positive=f.name in _POSITIVE.get(name, ()),
-                                        lo=0.0 if f.name in ("mu", "B", "spot_radius") else None)
-    unknown = set(sec.table) - {f.name for f in dataclasses.fields(cls)}
-    if unknown:
-        k = sorted(unknown)[0]
-        raise FfrInputError(root.source, f"{name}.{k}", sec.table[k], "unknown field")
-    return cls(**kwargs)
-
-
-def _optional(root: _Reader, name: str, cls: type) -> Any:
-    """An optional section of numbers, every field defaulting to the dataclass's default."""
-    if name not in root.table:
+def _build(cls: type, table: Any) -> Any:
+    """A model dataclass from its checked schema table (None: the dataclass's defaults)."""
+    if table is None:
         return cls()
-    sec = root.sub(name)
-    kwargs: dict[str, Any] = {}
-    for f in dataclasses.fields(cls):
-        if f.name in sec.table:
-            lo = None if (name, f.name) == ("slip", "wall_mu") else 0.0
-            kwargs[f.name] = sec.number(f.name, lo=lo)
-    unknown = set(sec.table) - {f.name for f in dataclasses.fields(cls)}
-    if unknown:
-        k = sorted(unknown)[0]
-        raise FfrInputError(root.source, f"{name}.{k}", sec.table[k], "unknown field")
-    obj = cls(**kwargs)
-    for f in dataclasses.fields(cls):
-        v = getattr(obj, f.name)
-        bad = ((name == "sides" and v <= 0.0)
-               or (name == "slip" and f.name == "track_factor" and not 1.0 <= v <= 3.0)
-               or (name == "slip" and f.name == "creep" and v >= 1.0)
-               or (name == "slip" and f.name in ("turn_radius", "floor_mu", "contact_length") and v <= 0.0))
-        if bad:
-            raise FfrInputError(root.source, f"{name}.{f.name}", v,
-                                "out of range (docs/drivetrain.md lists each field's range)")
-    return obj
-
-
-def _calibration(root: _Reader) -> Calibration:
-    if "calibration" not in root.table:
-        return Calibration()
-    sec = root.sub("calibration")
-    known = {"wheel_radius", "track_width", "ticks_per_rev", "ir"}
-    unknown = set(sec.table) - known
-    if unknown:
-        k = sorted(unknown)[0]
-        raise FfrInputError(root.source, f"calibration.{k}", sec.table[k], "unknown field")
-    cal = Calibration()
-    for key in ("wheel_radius", "track_width"):
-        if sec.table.get(key) is not None:
-            setattr(cal, key, sec.number(key, positive=True))
-    t = sec.table.get("ticks_per_rev")
-    if t is not None:
-        if isinstance(t, bool) or not isinstance(t, int) or t <= 0:
-            raise FfrInputError(root.source, "calibration.ticks_per_rev", t, "must be a positive integer")
-        cal.ticks_per_rev = t
-    if "ir" in sec.table:
-        ir_tab = sec.sub("ir")
-        for n in ir_tab.table:
-            if n not in IR_NAMES:
-                raise FfrInputError(root.source, f"calibration.ir.{n}", "...",
-                                    f"unknown ranger (known: {IR_NAMES})")
-            s = ir_tab.sub(n)
-            extra = set(s.table) - {"x", "y", "angle_deg"}
-            if extra:
-                k = sorted(extra)[0]
-                raise FfrInputError(root.source, f"calibration.ir.{n}.{k}", s.table[k], "unknown field")
-            cal.ir[n] = IrPose(s.number("x"), s.number("y"), s.number("angle_deg", lo=-360, hi=360))
-    return cal
-
-
-ROBOT_SECTIONS = ("body", "track", "motor", "encoder", "ir", "line_sensor", "flame", "fans", "slip", "sides",
-                  "battery", "calibration")
+    return cls(**{f.name: getattr(table, f.name) for f in dataclasses.fields(cls)})
 
 
 def robot_from_dict(data: dict[str, Any], source: str) -> RobotParams:
-    root = _Reader(source, data)
-    unknown = sorted(set(data) - set(ROBOT_SECTIONS))
-    if unknown:
-        near = difflib.get_close_matches(unknown[0], ROBOT_SECTIONS, n=1)
-        hint = f"did you mean {near[0]!r}? " if near else ""
-        raise FfrInputError(source, unknown[0], data[unknown[0]],
-                            f"unknown section ({hint}known: {', '.join(ROBOT_SECTIONS)})")
-    ir_tab = root.sub("ir")
-    ir = {}
-    for n in IR_NAMES:
-        s = ir_tab.sub(n)
-        ir[n] = IrPose(s.number("x"), s.number("y"), s.number("angle_deg", lo=-360, hi=360))
-    extra = set(ir_tab.table) - set(IR_NAMES)
-    if extra:
-        raise FfrInputError(source, f"ir.{sorted(extra)[0]}", "...", f"unknown ranger (known: {IR_NAMES})")
-    robot = RobotParams(
-        body=_section(root, "body", Body),
-        track=_section(root, "track", Track),
-        motor=_section(root, "motor", Motor),
-        encoder=_section(root, "encoder", Encoder),
-        ir=ir,
-        line_sensor=_section(root, "line_sensor", LineSensor),
-        flame=_section(root, "flame", Flame),
-        fans=_section(root, "fans", Fans),
-        slip=_optional(root, "slip", Slip),
-        sides=_optional(root, "sides", Sides),
-        battery=_optional(root, "battery", Battery),
-        calibration=_calibration(root),
+    """A robot from a robot file's tables (checked against ``sim_plant/file_schemas.RobotFile``)."""
+    f: RobotFile = check(data, RobotFile, source)
+    cal = Calibration()
+    if f.calibration is not None:
+        c = f.calibration
+        cal = Calibration(c.wheel_radius, c.track_width, c.ticks_per_rev,
+                          {n: _build(IrPose, getattr(c.ir, n)) for n in IR_NAMES
+                           if c.ir is not None and getattr(c.ir, n) is not None})
+    return RobotParams(
+        body=_build(Body, f.body),
+        track=_build(Track, f.track),
+        motor=_build(Motor, f.motor),
+        encoder=_build(Encoder, f.encoder),
+        ir={n: _build(IrPose, getattr(f.ir, n)) for n in IR_NAMES},
+        line_sensor=_build(LineSensor, f.line_sensor),
+        flame=_build(Flame, f.flame),
+        fans=_build(Fans, f.fans),
+        slip=_build(Slip, f.slip),
+        sides=_build(Sides, f.sides),
+        battery=_build(Battery, f.battery),
+        calibration=cal,
         source=source,
     )
-    b = robot.body
-    if b.length_front + b.length_rear > MAX_FOOTPRINT:
-        raise FfrInputError(source, "body.length_front", b.length_front,
-                            f"robot longer than the contest's {MAX_FOOTPRINT} m")
-    if b.width > MAX_FOOTPRINT:
-        raise FfrInputError(source, "body.width", b.width, f"robot wider than the contest's {MAX_FOOTPRINT} m")
-    if robot.track.track_width > b.width:
-        raise FfrInputError(source, "track.track_width", robot.track.track_width, "wider than the body")
-    if not 0.0 < robot.line_sensor.white_fraction <= 1.0:
-        raise FfrInputError(source, "line_sensor.white_fraction", robot.line_sensor.white_fraction,
-                            "must be in (0, 1]")
-    return robot
 
 
 def load_robot(path: str | Path | None = None) -> RobotParams:

@@ -44,9 +44,10 @@ from typing import Any
 import numba as nb
 import numpy as np
 
-from sim_plant.arena import read_toml
 from sim_plant.errors import FfrInputError
-from sim_plant.reality import Reality, reality_from_table, reality_to_table
+from sim_plant.file_schemas import NoiseFile, ProfileTable
+from sim_plant.reality import Reality, reality_to_table
+from sim_plant.schema import check, read_toml
 from sim_plant.sensors.models import FlameWorld, RangerModel
 
 DEFAULT_PROFILES = Path(__file__).resolve().parent.parent / "data" / "noise_profiles.toml"
@@ -63,9 +64,6 @@ ENC_SLIP_P = 15
 ENC_SLIP_F = 16
 ENABLED = 17
 N_PARAMS = 18
-
-_DROPOUT_MODES = ("zero", "hold")
-
 
 @dataclass(frozen=True)
 class AnalogNoise:
@@ -161,83 +159,29 @@ class NoiseProfile:
 
 # -- loading ---------------------------------------------------------------
 
-_PROB_FIELDS = {"dropout_prob", "spike_prob", "flip_prob", "slip_prob", "slip_fraction"}
-_NONNEG_FIELDS = {"sigma", "quant_step", "spike_amp", "unit_offset_spread"}
 _GROUPS: dict[str, type] = {"ir": AnalogNoise, "flame": AnalogNoise, "line": LineNoise,
                             "encoder": EncoderNoise, "ranger": RangerModel,
                             "flame_world": FlameWorld}
-_BOOL_FIELDS = {"latency", "random_phase"}
-# field: (lowest, highest) allowed, inclusive
-_RANGES: dict[str, tuple[float, float]] = {
-    "beam_half_angle_deg": (0.0, 30.0), "beam_rays": (1, 64), "period_spread": (0.0, 0.03),
-    "strength_min": (0.0, 100.0), "strength_max": (0.0, 100.0), "flicker_amp": (0.0, 1.0),
-    "flicker_hz": (0.0, 50.0), "wall_reflectance": (0.0, 1.0), "afterglow_s": (0.0, 10.0),
-}
 
 
-def _group(src: str, prefix: str, cls: type, table: Any) -> Any:
-    if not isinstance(table, dict):
-        raise FfrInputError(src, prefix, table, "must be a table")
-    names = {f.name for f in dataclasses.fields(cls)}
-    kwargs: dict[str, Any] = {}
-    for key, v in table.items():
-        fname = f"{prefix}.{key}"
-        if key not in names:
-            raise FfrInputError(src, fname, v, f"unknown field (known: {', '.join(sorted(names))})")
-        if key in _BOOL_FIELDS:
-            if not isinstance(v, bool):
-                raise FfrInputError(src, fname, v, "must be true or false")
-            kwargs[key] = v
-            continue
-        if key == "beam_rays" and (isinstance(v, bool) or not isinstance(v, int)):
-            raise FfrInputError(src, fname, v, "must be a whole number")
-        if key in _RANGES and (isinstance(v, int | float) and not isinstance(v, bool)
-                               and not _RANGES[key][0] <= v <= _RANGES[key][1]):
-            raise FfrInputError(src, fname, v, f"must be in [{_RANGES[key][0]}, {_RANGES[key][1]}]")
-        if key == "beam_rays":
-            kwargs[key] = int(v)
-            continue
-        if key == "dropout_mode":
-            if v not in _DROPOUT_MODES:
-                raise FfrInputError(src, fname, v, f"must be one of {_DROPOUT_MODES}")
-            kwargs[key] = v
-            continue
-        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
-            raise FfrInputError(src, fname, v, "must be a finite number")
-        if key in _PROB_FIELDS and not 0.0 <= v <= 1.0:
-            raise FfrInputError(src, fname, v, "must be in [0, 1]")
-        if key in _NONNEG_FIELDS and v < 0.0:
-            raise FfrInputError(src, fname, v, "must be >= 0")
-        kwargs[key] = float(v)
-    if "unit_gain_spread" in kwargs and not 0.0 <= kwargs["unit_gain_spread"] < 1.0:
-        raise FfrInputError(src, f"{prefix}.unit_gain_spread", kwargs["unit_gain_spread"], "must be in [0, 1)")
-    g = cls(**kwargs)
-    if isinstance(g, FlameWorld) and g.strength_max < g.strength_min:
-        raise FfrInputError(src, f"{prefix}.strength_max", g.strength_max,
-                            f"must be >= strength_min ({g.strength_min})")
-    if isinstance(g, AnalogNoise) and g.dropout_prob + g.spike_prob > 1.0:
-        raise FfrInputError(src, f"{prefix}.spike_prob", g.spike_prob,
-                            "dropout_prob + spike_prob must be <= 1")
-    return g
+def _build(cls: type, table: Any) -> Any:
+    if table is None:
+        return cls()
+    return cls(**{f.name: getattr(table, f.name) for f in dataclasses.fields(cls)})
 
 
 def _profile(src: str, name: str, table: Any) -> NoiseProfile:
-    if not isinstance(table, dict):
-        raise FfrInputError(src, name, table, "a profile must be a table")
-    kwargs: dict[str, Any] = {}
-    for key, v in table.items():
-        if key == "description":
-            if not isinstance(v, str):
-                raise FfrInputError(src, f"{name}.{key}", v, "must be a string")
-            kwargs[key] = v
-        elif key in _GROUPS:
-            kwargs[key] = _group(src, f"{name}.{key}", _GROUPS[key], v)
-        elif key == "reality":
-            kwargs[key] = reality_from_table(src, f"{name}.{key}", v)
-        else:
-            raise FfrInputError(src, f"{name}.{key}", v,
-                                f"unknown field (known: description, {', '.join(_GROUPS)}, reality)")
-    return NoiseProfile(name=name, source=src, **kwargs)
+    """One profile from its table (checked against ``sim_plant/file_schemas.ProfileTable``)."""
+    t = check(table, ProfileTable, src, name)
+    groups = {g: _build(cls, getattr(t, g)) for g, cls in _GROUPS.items()}
+    return NoiseProfile(name=name, source=src, description=t.description, reality=_build(Reality, t.reality),
+                        **groups)
+
+
+def profiles_from_dict(data: dict[str, Any], source: str) -> dict[str, NoiseProfile]:
+    """Every profile of a profiles file's tables (checked against ``file_schemas.NoiseFile``)."""
+    check(data, NoiseFile, source)
+    return {name: _profile(source, name, t) for name, t in data.items()}
 
 
 def profile_from_table(table: Any, source: str, name: str = "inline") -> NoiseProfile:
@@ -278,6 +222,7 @@ def load_noise_profile(name_or_path: str | Path = "none") -> NoiseProfile:
         return _profile(src, spec, data[spec])
     path, _, want = spec.partition("#")
     data = read_toml(path)
+    check(data, NoiseFile, path)  # every profile of the file, not only the one picked
     if want:
         if want not in data:
             raise FfrInputError(path, "profile", want,

@@ -61,6 +61,13 @@ FILES: dict[str, str | bytes] = {
     "binary.toml": bytes(range(128, 256)) * 2,
     "arena_missing.toml": "arena = 'no_such_arena.toml'\n",
     "robot_missing.toml": "robot = 'no_such_robot.toml'\n",
+    "firmware_nested.toml": "[firmware.sub]\nx = 1\n",
+    "start_half.toml": "[start]\nx = 2.11\n",
+    "events_type.toml": "events = 5\n",
+    "reality_range.toml": "[noise.reality]\ncreep = [0.5, 0.1]\n",
+    "furniture_typo.toml": "[[furniture]]\nx = 1.76\ny = 1.85\nwidth = 0.15\ndepht = 0.15\n",
+    "override_table.toml": "[robot_overrides]\n'motor.R' = {a = 1}\n",
+    "nan.toml": "[candle]\nposition = [0.55, nan]\n",
     # arenas
     "arena_key.toml": _arena('name = "outer_bottom"', 'name = "outer_bottom"\ncolour = "white"'),
     "arena_thick.toml": _arena("t = 0.02", "t = -0.02"),
@@ -72,6 +79,7 @@ FILES: dict[str, str | bytes] = {
     "robot_key.toml": _robot("R = 6.69", "R = 6.69\nRR = 1.0"),
     "robot_value.toml": _robot("R = 6.69", "R = -6.69"),
     "robot_type.toml": _robot("wheel_radius = 0.028", "wheel_radius = 'small'"),
+    "robot_calibration.toml": _robot("[body]", "[calibration.ir.LF]\nx = 0.06\ny = 0.05\nangel_deg = 45\n\n[body]"),
     # noise profile files
     "noise_group.toml": "[p]\ndescription = 'x'\n[p.sonar]\nsigma = 1.0\n",
     "noise_field.toml": "[p]\ndescription = 'x'\n[p.ir]\nsigmaa = 1.0\n",

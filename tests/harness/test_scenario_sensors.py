@@ -49,7 +49,7 @@ def test_ir_sources_and_models_load_and_round_trip(tmp_path: Path) -> None:
 @pytest.mark.parametrize("table,field,value", [
     ("positon = [0.05, 2.0]\nstrength = 1.0", "ir_source[0].positon", "did you mean 'position'"),
     ("position = [3.0, 1.0]\nstrength = 1.0", "ir_source[0].position", "inside the arena"),
-    ("position = [1.0, 1.0]\nstrength = -1.0", "ir_source[0].strength", ">= 0"),
+    ("position = [1.0, 1.0]\nstrength = -1.0", "ir_source[0].strength", "must be in [0, 1000]"),
     ("position = [1.0, 1.0]", "ir_source[0].strength", "missing"),
 ])
 def test_bad_ir_source_is_one_line_naming_the_field(tmp_path: Path, table: str, field: str,
