@@ -176,6 +176,15 @@ typedef enum {
                               * now st->room.exit_heading_rad (the corridor reversed) */
     FFR_ROOM_LEFT = 2        /* out across the doorway line and clear of it           */
 } ffr_room_result_t;
+/* chosen: a flame the approach saw near (4 x flame_detect), lost and not
+ * found again by a re-scan for this long (ms) without being put out: the
+ * mission fails "flame lost" (FFR_FAIL_LOST_FLAME). Longer than a flicker or
+ * a draught's gust (well under a second), shorter than one scan at the
+ * default scan_rate_deg_s (150: 2.4 s a turn), so there the re-scan's one
+ * turn decides; a faster scan turns on until this has passed. */
+#ifndef FFR_FLAME_LOST_MS
+#define FFR_FLAME_LOST_MS 2000u
+#endif
 /* entry_heading_rad: the heading the room is entered on (the route's reference). */
 void ffr_room_begin(ffr_state_t *st, uint8_t room, float entry_heading_rad);
 ffr_room_result_t ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in);

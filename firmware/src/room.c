@@ -20,7 +20,7 @@
  *   ENTER_LINE --line--> ENTER_IN --deep enough / line / wall--> SCAN
  *   SCAN --peak passed, or a full turn with a flame--> TURN_BEST --> APPROACH
  *   SCAN --a full turn, no flame--> LEAVE_TURN
- *   SCAN --a full turn, the approached flame lost > FLAME_LOST_MS--> failed (flame lost)
+ *   SCAN --a full turn, the approached flame lost > FFR_FLAME_LOST_MS--> failed (flame lost)
  *   APPROACH --stopped, flame near--> EXTINGUISH;  --at the door / flame far--> BACK_DRIVE
  *   APPROACH --flame lost--> SCAN
  *   EXTINGUISH --out for flame_out_confirm_ms--> VERIFY;  --timeout--> EXTINGUISH,
@@ -75,14 +75,6 @@ enum {
 /* chosen: the approach's flame below this share of flame_detect is lost (or
  * went out by itself); half keeps noise near the threshold from ending it */
 #define FLAME_LOST_SHARE 0.5f
-/* chosen: a flame the approach saw near (FLAME_NEAR), lost and not found
- * again by a scan for this long (ms) without being put out: the mission
- * fails "flame lost" (FFR_FAIL_LOST_FLAME). Longer than a flicker or a
- * draught's gust (well under a second), shorter than one scan at the default
- * scan_rate_deg_s (150: 2.4 s), so the default re-scan's one turn decides. */
-#ifndef FLAME_LOST_MS
-#define FLAME_LOST_MS 2000u
-#endif
 /* counts: the flame's balance is taken over at least this sum (no division
  * by a sum near zero) */
 #define BAL_MIN_SUM 1.0f
@@ -243,7 +235,7 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
             ffr_stop(st);
             return RP_LEAVE_TURN; /* no flame in this room */
         }
-        if (st->t_ms - r->lost_since_ms >= FLAME_LOST_MS) {
+        if (st->t_ms - r->lost_since_ms >= FFR_FLAME_LOST_MS) {
             /* the flame approached is gone, not put out, and not found again */
             ffr_fail(st, FFR_FAIL_LOST_FLAME);
             return RP_STAY;
@@ -300,7 +292,7 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
     }
     if (sig < FLAME_LOST_SHARE * cfg->flame_detect) {
         /* lost it (or it went out by itself): look again from here; a flame
-         * seen near is watched (FLAME_LOST_MS) */
+         * seen near is watched (FFR_FLAME_LOST_MS) */
         if (r->flame_near && r->lost_since_ms == 0u) {
             r->lost_since_ms = stamp(st);
         }

@@ -97,4 +97,6 @@ extern const unit_suite_t suite_robustness;
 extern const unit_suite_t suite_home_orient;
 extern const unit_suite_t suite_turn_calibration;
 extern const unit_suite_t suite_turn_room;
+extern const unit_suite_t suite_room_guards;
+extern const unit_suite_t suite_room;
 #endif

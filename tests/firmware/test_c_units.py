@@ -12,8 +12,8 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 # the C unit tests: suites (one a file) and named tests (firmware/tests/main.c prints both)
-C_SUITES = 16
-C_TESTS = 60
+C_SUITES = 18
+C_TESTS = 76
 
 
 def _make(target: str) -> subprocess.CompletedProcess[str]:
@@ -36,6 +36,8 @@ def test_c_unit_tests_pass() -> None:
                             timeout=60).stdout.split()
     assert len(listed) == C_TESTS and len(set(listed)) == C_TESTS  # every test named, no name twice
     assert len({name.split(".")[0] for name in listed}) == C_SUITES
+    # one suite a file, every file's suite run (main.c lists them)
+    assert len(list((REPO / "firmware" / "tests").glob("test_*.c"))) == C_SUITES
 
 
 def test_a_failed_c_check_names_its_test() -> None:
