@@ -9,6 +9,9 @@
 /* contest lines are 2.5 cm wide, walls about 2 cm thick: the door wall's
  * room-side face lies about this far beyond the doorway line's near edge */
 #define DOOR_WALL_FACE_MM 25.0f
+/* the door's wall is known by odometry (short and reliable inside one room):
+ * a corner stops at this share of the rangers' guard_stop_mm from it */
+#define DOOR_STOP_SHARE 0.5f
 /* the flame's balance (left - right over both) about 20 degrees off the heading */
 #define FLAME_AIM_BAL 0.5f
 /* the guards' steering: yaw rate (rad/s) per mm a wall is inside guard_side_mm
@@ -106,7 +109,7 @@ float ffr_door_wall_guard(const ffr_state_t *st, const ffr_door_frame_t *f, floa
         }
         /* the doorway line lies on the wall's centre line and is first seen at
          * its near edge: the wall's room-side face is about a line width deeper */
-        if (d < DOOR_WALL_FACE_MM + 0.5f * cfg->guard_stop_mm) {
+        if (d < DOOR_WALL_FACE_MM + DOOR_STOP_SHARE * cfg->guard_stop_mm) {
             *stop = 1;
         } else if (d < DOOR_WALL_FACE_MM + cfg->guard_side_mm) {
             /* left corner (k = 1) near: turn right, and the other way round;
