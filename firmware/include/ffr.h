@@ -310,6 +310,10 @@ typedef struct {
     uint32_t below_since_ms;
     float flame_f;                 /* flame sum, filtered: is it out?          */
     float best_front_mm;           /* the wall ahead at the best heading (front distance) */
+    float exit_heading_rad;        /* the way out of the door (route.c takes it as its heading reference) */
+    uint32_t lost_since_ms;        /* the approached flame lost since (0: not lost) */
+    uint8_t flame_near;            /* the approach has seen the flame near (room.c FLAME_NEAR) */
+    uint8_t reserved[3];
 } ffr_room_state_t;
 
 /* The rangers' geometry in the body frame (x ahead, y left; ir_calibration.c):

@@ -168,13 +168,64 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
                          const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm);
 int ffr_opening(const ffr_openings_t *op, int side);
 
-/* room.c: the room task (Fig. 11) and the flame task (Fig. 12). */
-void ffr_room_begin(ffr_state_t *st, uint8_t room);
-/* Returns 1 when the robot has left the room. */
-int ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in);
+/* room.c: the room task (Fig. 11) and the flame task (Fig. 12), one handler
+ * a phase. It writes no route state: what route.c must do, it returns. */
+typedef enum {
+    FFR_ROOM_BUSY = 0,       /* still in the room                                      */
+    FFR_ROOM_FACING_OUT = 1, /* turned to the door: the route's heading reference is
+                              * now st->room.exit_heading_rad (the corridor reversed) */
+    FFR_ROOM_LEFT = 2        /* out across the doorway line and clear of it           */
+} ffr_room_result_t;
+/* chosen: a flame the approach saw near (4 x flame_detect), lost and not
+ * found again by a re-scan for this long (ms) without being put out: the
+ * mission fails "flame lost" (FFR_FAIL_LOST_FLAME). Longer than a flicker or
+ * a draught's gust (well under a second), shorter than one scan at the
+ * default scan_rate_deg_s (150: 2.4 s a turn), so there the re-scan's one
+ * turn decides; a faster scan turns on until this has passed. */
+#ifndef FFR_FLAME_LOST_MS
+#define FFR_FLAME_LOST_MS 2000u
+#endif
+/* entry_heading_rad: the heading the room is entered on (the route's reference). */
+void ffr_room_begin(ffr_state_t *st, uint8_t room, float entry_heading_rad);
+ffr_room_result_t ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in);
+
+/* room_guards.c: the room task's geometry guards, where the robot is
+ * relative to the doorway it came in by and the walls near it. */
+/* The heading's and the entry heading's cosine and sine, worked out once a
+ * tick for every ffr_depth_in of that tick. */
+typedef struct {
+    float c, s;   /* heading       */
+    float ce, se; /* entry heading */
+} ffr_door_frame_t;
+ffr_door_frame_t ffr_door_frame(const ffr_state_t *st);
+/* A body-frame point (bx ahead, by left, mm) relative to where the doorway
+ * line was crossed: depth into the room (along the entry heading), returned,
+ * and the lateral offset in *lateral (if not NULL), mm. */
+float ffr_depth_in(const ffr_state_t *st, const ffr_door_frame_t *f, float bx, float by, float *lateral);
+/* Is a flame seen in direction `dir` (rad) from the scan point outside the
+ * room, seen through the door the robot came in by? The doorway line runs
+ * through the point where it was crossed, square to the entry heading; a ray
+ * that leaves through it within half a hallway of that point leaves by the
+ * door. No candle can stand on the short stretch of that ray inside the room:
+ * the contest keeps the candle circle 33 cm clear of the doorway. */
+int ffr_through_door(const ffr_state_t *st, float dir);
+/* Is the robot's nose at the doorway it came in by (its line, or about to
+ * reach it)? Approaching a flame, that means the flame is out there. */
+int ffr_nose_in_doorway(const ffr_state_t *st, const ffr_door_frame_t *f);
+/* The door's wall as a virtual wall: a yaw rate (rad/s, + left) away from it
+ * as a front corner nears its line, *stop set when one reaches it; bal is the
+ * flame's balance (+ left), the push kept small when it would lose the flame. */
+float ffr_door_wall_guard(const ffr_state_t *st, const ffr_door_frame_t *f, float bal, int *stop);
+/* The approach's guard: the rangers' walls by the front half and the door's
+ * wall. A yaw rate away from them; *stop: a front corner about to touch one;
+ * *near: a wall beside the front half. */
+float ffr_approach_guard(const ffr_state_t *st, const ffr_door_frame_t *f, float bal, int *stop, int *near);
 /* Leaving a room: the yaw rate (rad/s, + left) that steers a front corner off
  * a wall its ranger sees beside the front half (this tick's hits). */
 float ffr_leave_guard(const ffr_state_t *st);
+/* Driving in: a heading offset (rad, + left) away from a side wall nearer
+ * than the scan's turn in place needs (the body's corner radius + a margin). */
+float ffr_scan_room_offset(const ffr_state_t *st);
 
 /* drive.c: corridor driving shared by the route steps. */
 void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed);

@@ -48,7 +48,7 @@ static void begin_current(ffr_state_t *st)
             ffr_fail(st, FFR_FAIL_BAD_ROUTE);
             return;
         }
-        ffr_room_begin(st, s->arg);
+        ffr_room_begin(st, s->arg, st->route.heading_ref_rad);
         break;
     case FFR_OP_HOME:
         st->state = FFR_ST_HOMING;
@@ -154,13 +154,24 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
         return;
     }
     case FFR_OP_ROOM:
-        if (ffr_room_step(st, in)) {
+        /* the room task (room.c) says when the route moves on */
+        switch (ffr_room_step(st, in)) {
+        case FFR_ROOM_FACING_OUT:
+            /* the corridor heading reversed: later turns stay square to the walls */
+            st->route.heading_ref_rad = st->room.exit_heading_rad;
+            break;
+        case FFR_ROOM_LEFT:
+            st->rooms_searched = (uint8_t)(st->rooms_searched + 1u);
             if (st->flags & FFR_FLAG_EXTINGUISHED) {
                 st->returning = 1;
                 ffr_route_begin(st, cfg->return_start[s->arg - 1]);
             } else {
                 next(st);
             }
+            break;
+        case FFR_ROOM_BUSY:
+        default:
+            break;
         }
         return;
     case FFR_OP_HOME:

@@ -48,7 +48,7 @@ static float off90(float a)
     return a;
 }
 
-static void the_walls_direction_whatever_the_start_heading(void)
+TEST(the_walls_direction_whatever_the_start_heading)
 {
     ffr_config_t cfg;
     ffr_home_orient_t o;
@@ -73,7 +73,7 @@ static void the_walls_direction_whatever_the_start_heading(void)
     CHECK_NEAR(worst, 0.0f, 1.5f * FFR_DEG);
 }
 
-static void the_open_end_and_the_walls_around(void)
+TEST(the_open_end_and_the_walls_around)
 {
     ffr_config_t cfg;
     ffr_home_orient_t o;
@@ -130,7 +130,7 @@ static void add_wall(ffr_home_orient_t *o, float px, float py, float ux, float u
     }
 }
 
-static void the_route_direction_by_the_wall_side_rule(void)
+TEST(the_route_direction_by_the_wall_side_rule)
 {
     ffr_config_t cfg;
     ffr_home_orient_t o;
@@ -168,7 +168,7 @@ static void the_route_direction_by_the_wall_side_rule(void)
     CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) == -1);
 }
 
-static void the_firmware_orients_before_the_route(void)
+TEST(the_firmware_orients_before_the_route)
 {
     ffr_config_t cfg;
     rig_t r;
@@ -215,7 +215,7 @@ static void readings(const ffr_config_t *cfg, const rig_walls_t *w, float x, flo
     }
 }
 
-static void the_nearest_wall_from_the_five_rangers(void)
+TEST(the_nearest_wall_from_the_five_rangers)
 {
     ffr_config_t cfg;
     ffr_ir_geom_t g;
@@ -331,7 +331,7 @@ static int orient_among(const rig_walls_t *w, float th0)
     return clear ? (escaped ? 2 : 1) : 0;
 }
 
-static void room_to_turn_first_then_the_sweep(void)
+TEST(room_to_turn_first_then_the_sweep)
 {
     ffr_config_t cfg;
     float gap, th;
@@ -364,12 +364,10 @@ static void room_to_turn_first_then_the_sweep(void)
     }
 }
 
-void suite_home_orient(void)
-{
-    the_walls_direction_whatever_the_start_heading();
-    the_open_end_and_the_walls_around();
-    the_route_direction_by_the_wall_side_rule();
-    the_firmware_orients_before_the_route();
-    the_nearest_wall_from_the_five_rangers();
-    room_to_turn_first_then_the_sweep();
-}
+SUITE(home_orient,
+      TEST_REF(the_walls_direction_whatever_the_start_heading),
+      TEST_REF(the_open_end_and_the_walls_around),
+      TEST_REF(the_route_direction_by_the_wall_side_rule),
+      TEST_REF(the_firmware_orients_before_the_route),
+      TEST_REF(the_nearest_wall_from_the_five_rangers),
+      TEST_REF(room_to_turn_first_then_the_sweep));

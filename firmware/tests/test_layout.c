@@ -3,7 +3,7 @@
 #include "ffr.h"
 #include "unit.h"
 
-void suite_layout(void)
+TEST(sizes_fields_and_hash_are_consistent)
 {
     uint32_t n = 0, i;
     const ffr_field_t *f = ffr_layout(&n);
@@ -25,3 +25,5 @@ void suite_layout(void)
     CHECK(ffr_layout_hash() != 0u);
     CHECK(ffr_version() == ((FFR_VERSION_MAJOR << 16) | FFR_VERSION_MINOR));
 }
+
+SUITE(layout, TEST_REF(sizes_fields_and_hash_are_consistent));

@@ -1,7 +1,7 @@
 #include "ffr_internal.h"
 #include "unit.h"
 
-void suite_line_counter(void)
+TEST(two_lines_two_edges)
 {
     ffr_config_t cfg;
     ffr_line_counter_t l;
@@ -17,7 +17,14 @@ void suite_line_counter(void)
     }
     CHECK(edges == 2);
     CHECK(l.count == 2);
-    /* a flicker inside the hold-off is the same line */
+}
+
+TEST(a_flicker_inside_the_hold_off_is_the_same_line)
+{
+    ffr_config_t cfg;
+    ffr_line_counter_t l;
+    int i;
+    ffr_config_default(&cfg);
     ffr_lines_reset(&l);
     for (i = 0; i < 3; ++i) {
         ffr_lines_update(&l, &cfg, 1, (float)i);
@@ -29,8 +36,15 @@ void suite_line_counter(void)
     }
     CHECK(l.count == 1);
     CHECK(l.edge == 0);
-    /* a misread of one or two ticks is no line at all */
+}
+
+TEST(a_misread_is_no_line_the_third_white_tick_is_the_edge)
+{
+    ffr_config_t cfg;
+    ffr_line_counter_t l;
+    ffr_config_default(&cfg);
     ffr_lines_reset(&l);
+    /* a misread of one or two ticks is no line at all */
     ffr_lines_update(&l, &cfg, 1, 0.0f);
     ffr_lines_update(&l, &cfg, 0, 3.0f);
     ffr_lines_update(&l, &cfg, 1, 100.0f);
@@ -43,10 +57,23 @@ void suite_line_counter(void)
     CHECK(l.count == 0);
     ffr_lines_update(&l, &cfg, 1, 206.0f);
     CHECK(l.count == 1 && l.edge == 1);
-    /* standing on a line: one edge only */
+}
+
+TEST(standing_on_a_line_one_edge_only)
+{
+    ffr_config_t cfg;
+    ffr_line_counter_t l;
+    int i;
+    ffr_config_default(&cfg);
     ffr_lines_reset(&l);
     for (i = 0; i < 10; ++i) {
         ffr_lines_update(&l, &cfg, 1, 0.0f);
     }
     CHECK(l.count == 1);
 }
+
+SUITE(line_counter,
+      TEST_REF(two_lines_two_edges),
+      TEST_REF(a_flicker_inside_the_hold_off_is_the_same_line),
+      TEST_REF(a_misread_is_no_line_the_third_white_tick_is_the_edge),
+      TEST_REF(standing_on_a_line_one_edge_only));

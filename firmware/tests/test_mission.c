@@ -7,7 +7,7 @@
 #include "rig.h"
 #include "unit.h"
 
-static void corridor_route(void)
+TEST(corridor_route)
 {
     ffr_config_t cfg;
     rig_t r;
@@ -46,7 +46,7 @@ static void corridor_route(void)
     CHECK_NEAR(r.st.route.heading_ref_rad, 0.5 * 3.14159265, 0.5f * FFR_DEG);
 }
 
-static void room_task(void)
+TEST(room_task)
 {
     ffr_config_t cfg;
     rig_t r;
@@ -123,7 +123,7 @@ static void room_task(void)
     CHECK(r.out.pwm[0] == 0 && r.out.pwm[1] == 0 && r.out.fan == 0);
 }
 
-static void no_flame_anywhere(void)
+TEST(no_flame_anywhere)
 {
     ffr_config_t cfg;
     rig_t r;
@@ -144,7 +144,7 @@ static void no_flame_anywhere(void)
     CHECK(r.out.pwm[0] == 0 && r.out.pwm[1] == 0);
 }
 
-static void bad_room_number(void)
+TEST(bad_room_number)
 {
     ffr_config_t cfg;
     rig_t r;
@@ -158,10 +158,8 @@ static void bad_room_number(void)
     CHECK(r.out.fail_code == FFR_FAIL_BAD_ROUTE);
 }
 
-void suite_mission(void)
-{
-    corridor_route();
-    room_task();
-    no_flame_anywhere();
-    bad_room_number();
-}
+SUITE(mission,
+      TEST_REF(corridor_route),
+      TEST_REF(room_task),
+      TEST_REF(no_flame_anywhere),
+      TEST_REF(bad_room_number));

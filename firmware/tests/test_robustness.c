@@ -8,7 +8,7 @@
 #include "rig.h"
 #include "unit.h"
 
-static void openings_by_the_rear_ranger(void)
+TEST(openings_by_the_rear_ranger)
 {
     ffr_config_t cfg;
     ffr_openings_t op;
@@ -34,7 +34,7 @@ static void openings_by_the_rear_ranger(void)
     CHECK(!ffr_opening(&op, FFR_SIDE_LEFT));
 }
 
-static void far_hits_are_not_the_wall(void)
+TEST(far_hits_are_not_the_wall)
 {
     ffr_config_t cfg;
     float ir[FFR_IR_COUNT];
@@ -51,7 +51,7 @@ static void far_hits_are_not_the_wall(void)
     CHECK_NEAR(w.dist_mm, 230.0, 0.5);
 }
 
-static void one_ranger_keeps_heading_feedback(void)
+TEST(one_ranger_keeps_heading_feedback)
 {
     ffr_config_t cfg;
     ffr_state_t st;
@@ -115,7 +115,7 @@ static float approach_flame(rig_t *r, float flame_deg, float peak, int max_ticks
     return off;
 }
 
-static void door_wall_guard_stops_by_the_jamb(void)
+TEST(door_wall_guard_stops_by_the_jamb)
 {
     ffr_config_t cfg;
     rig_t r;
@@ -138,7 +138,7 @@ static void door_wall_guard_stops_by_the_jamb(void)
     CHECK(ffr_absf(off) > 3.0f && ffr_absf(off) < 25.0f);
 }
 
-static void flame_beyond_the_door_is_left_alone(void)
+TEST(flame_beyond_the_door_is_left_alone)
 {
     ffr_config_t cfg;
     rig_t r;
@@ -168,7 +168,7 @@ static void flame_beyond_the_door_is_left_alone(void)
 /* Flames differ in size: an approach stopped beside a wall by the flame's
  * strength alone (FLAME_REACH) goes closer when the fans do not put it out;
  * one stopped by the candle circle's line does not. */
-static void a_flame_not_out_from_where_its_strength_said_is_approached_closer(void)
+TEST(a_flame_not_out_from_where_its_strength_said_is_approached_closer)
 {
     ffr_config_t cfg;
     rig_t r;
@@ -209,7 +209,7 @@ static void a_flame_not_out_from_where_its_strength_said_is_approached_closer(vo
 
 /* Leaving a room on odometry's heading, a front corner near a wall beside
  * it steers away; nothing near, no steering. Over the guard's whole band. */
-static void leaving_a_room_steers_a_front_corner_off_a_wall(void)
+TEST(leaving_a_room_steers_a_front_corner_off_a_wall)
 {
     static ffr_state_t st;
     int i, side;
@@ -251,7 +251,7 @@ static void leaving_a_room_steers_a_front_corner_off_a_wall(void)
 /* The white walls mirror the flame: a weak peak seen facing a near wall
  * does not end the scan early; the flame farther round is found and approached.
  * A weak peak with no wall ahead still ends it early (as before). */
-static void a_flame_reflection_in_a_near_wall_does_not_end_the_scan(void)
+TEST(a_flame_reflection_in_a_near_wall_does_not_end_the_scan)
 {
     ffr_config_t cfg;
     rig_t r;
@@ -289,7 +289,7 @@ static void a_flame_reflection_in_a_near_wall_does_not_end_the_scan(void)
     }
 }
 
-static void flame_dark_level_is_learned(void)
+TEST(flame_dark_level_is_learned)
 {
     ffr_config_t cfg;
     rig_t r;
@@ -311,15 +311,13 @@ static void flame_dark_level_is_learned(void)
     CHECK(r.st.flame_dark > 132.0f && r.st.flame_dark <= 140.0f); /* low by at most the noise */
 }
 
-void suite_robustness(void)
-{
-    leaving_a_room_steers_a_front_corner_off_a_wall();
-    a_flame_reflection_in_a_near_wall_does_not_end_the_scan();
-    a_flame_not_out_from_where_its_strength_said_is_approached_closer();
-    flame_dark_level_is_learned();
-    openings_by_the_rear_ranger();
-    far_hits_are_not_the_wall();
-    one_ranger_keeps_heading_feedback();
-    door_wall_guard_stops_by_the_jamb();
-    flame_beyond_the_door_is_left_alone();
-}
+SUITE(robustness,
+      TEST_REF(leaving_a_room_steers_a_front_corner_off_a_wall),
+      TEST_REF(a_flame_reflection_in_a_near_wall_does_not_end_the_scan),
+      TEST_REF(a_flame_not_out_from_where_its_strength_said_is_approached_closer),
+      TEST_REF(flame_dark_level_is_learned),
+      TEST_REF(openings_by_the_rear_ranger),
+      TEST_REF(far_hits_are_not_the_wall),
+      TEST_REF(one_ranger_keeps_heading_feedback),
+      TEST_REF(door_wall_guard_stops_by_the_jamb),
+      TEST_REF(flame_beyond_the_door_is_left_alone));

@@ -17,7 +17,7 @@ static float turn_and_fix(ffr_odometry_t *o, float c, float raw)
     return counted - truth;
 }
 
-static void the_scale_converges_over_the_whole_range(void)
+TEST(the_scale_converges_over_the_whole_range)
 {
     /* true scales from 0.9 to 1.1 (wheel radius +-3 %, track width +-5 % and more),
      * turns of 90 and 180 degrees and a room's scan of 540, both ways */
@@ -41,7 +41,7 @@ static void the_scale_converges_over_the_whole_range(void)
     CHECK_NEAR(worst, 0.0f, 0.002f);
 }
 
-static void small_turns_and_large_errors_teach_nothing(void)
+TEST(small_turns_and_large_errors_teach_nothing)
 {
     ffr_odometry_t o;
     ffr_odometry_reset(&o);
@@ -79,8 +79,6 @@ static void small_turns_and_large_errors_teach_nothing(void)
     }
 }
 
-void suite_turn_calibration(void)
-{
-    the_scale_converges_over_the_whole_range();
-    small_turns_and_large_errors_teach_nothing();
-}
+SUITE(turn_calibration,
+      TEST_REF(the_scale_converges_over_the_whole_range),
+      TEST_REF(small_turns_and_large_errors_teach_nothing));

@@ -19,7 +19,7 @@ static void odo_moving(ffr_odometry_t *o, float v_mm_s)
     o->v_mm_s[1] = v_mm_s;
 }
 
-static void front_distance_is_projected_over_the_reading_age(void)
+TEST(front_distance_is_projected_over_the_reading_age)
 {
     ffr_config_t cfg;
     ffr_odometry_t o;
@@ -49,7 +49,7 @@ static void front_distance_is_projected_over_the_reading_age(void)
     }
 }
 
-static void a_turn_backs_away_from_a_wall_inside_its_circle(void)
+TEST(a_turn_backs_away_from_a_wall_inside_its_circle)
 {
     ffr_config_t cfg;
     ffr_odometry_t o;
@@ -83,7 +83,7 @@ static void a_turn_backs_away_from_a_wall_inside_its_circle(void)
     CHECK(ffr_turn_room_v(&cfg, &o, ir) == 0.0f);
 }
 
-static void a_turn_near_a_wall_waits_for_the_body_to_slow(void)
+TEST(a_turn_near_a_wall_waits_for_the_body_to_slow)
 {
     ffr_config_t cfg;
     ffr_odometry_t o;
@@ -130,7 +130,7 @@ static void a_turn_near_a_wall_waits_for_the_body_to_slow(void)
     }
 }
 
-static void a_turn_step_near_a_wall_does_not_drive_into_it(void)
+TEST(a_turn_step_near_a_wall_does_not_drive_into_it)
 {
     /* the whole firmware: a TURN step right after stopping at cruise speed
      * with the wall ahead inside the turn's circle. The rig's drive moves
@@ -162,10 +162,8 @@ static void a_turn_step_near_a_wall_does_not_drive_into_it(void)
     CHECK(r.out.state != FFR_ST_TURN); /* and the turn still ends */
 }
 
-void suite_turn_room(void)
-{
-    front_distance_is_projected_over_the_reading_age();
-    a_turn_backs_away_from_a_wall_inside_its_circle();
-    a_turn_near_a_wall_waits_for_the_body_to_slow();
-    a_turn_step_near_a_wall_does_not_drive_into_it();
-}
+SUITE(turn_room,
+      TEST_REF(front_distance_is_projected_over_the_reading_age),
+      TEST_REF(a_turn_backs_away_from_a_wall_inside_its_circle),
+      TEST_REF(a_turn_near_a_wall_waits_for_the_body_to_slow),
+      TEST_REF(a_turn_step_near_a_wall_does_not_drive_into_it));

@@ -29,7 +29,7 @@ static void feed(ffr_wall_cal_t *c, int side, float err, float *s, float rel, fl
     }
 }
 
-static void a_pairs_tilt_is_learned_per_side(void)
+TEST(a_pairs_tilt_is_learned_per_side)
 {
     ffr_wall_cal_t c;
     ffr_wall_t w;
@@ -68,7 +68,7 @@ static void a_pairs_tilt_is_learned_per_side(void)
     CHECK(c.bias_rad[0] == 0.0f && c.bias_rad[1] == 0.0f && c.bias_n[0] == 0 && c.bias_n[1] == 0);
 }
 
-static void gaps_turns_and_other_walls_teach_nothing(void)
+TEST(gaps_turns_and_other_walls_teach_nothing)
 {
     ffr_wall_cal_t c;
     ffr_wall_t w;
@@ -193,7 +193,7 @@ static void follow_wall(world_t *wd, float front_mv, float rear_mv, float odo_er
     }
 }
 
-static void opposite_parts_no_longer_tilt_the_corridor_heading(void)
+TEST(opposite_parts_no_longer_tilt_the_corridor_heading)
 {
     world_t wd;
     float ref_true_deg, tilt_deg;
@@ -224,7 +224,7 @@ static void opposite_parts_no_longer_tilt_the_corridor_heading(void)
     }
 }
 
-static void odometry_off_by_a_turn_is_brought_back_by_the_wall(void)
+TEST(odometry_off_by_a_turn_is_brought_back_by_the_wall)
 {
     world_t wd;
     float err_deg;
@@ -243,10 +243,8 @@ static void odometry_off_by_a_turn_is_brought_back_by_the_wall(void)
     CHECK(wd.r.st.wall_cal.bias_rad[FFR_SIDE_RIGHT] / FFR_DEG < -3.0f);
 }
 
-void suite_wall_calibration(void)
-{
-    a_pairs_tilt_is_learned_per_side();
-    gaps_turns_and_other_walls_teach_nothing();
-    opposite_parts_no_longer_tilt_the_corridor_heading();
-    odometry_off_by_a_turn_is_brought_back_by_the_wall();
-}
+SUITE(wall_calibration,
+      TEST_REF(a_pairs_tilt_is_learned_per_side),
+      TEST_REF(gaps_turns_and_other_walls_teach_nothing),
+      TEST_REF(opposite_parts_no_longer_tilt_the_corridor_heading),
+      TEST_REF(odometry_off_by_a_turn_is_brought_back_by_the_wall));

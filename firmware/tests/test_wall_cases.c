@@ -2,14 +2,9 @@
 #include "rig.h"
 #include "unit.h"
 
-void suite_wall_cases(void)
+/* the six cases of Fig. 9 and the turn each asks for */
+TEST(the_six_cases_and_the_turn_each_asks_for)
 {
-    ffr_config_t cfg;
-    float ir[FFR_IR_COUNT];
-    ffr_openings_t op;
-    ffr_config_default(&cfg);
-
-    /* the six cases of Fig. 9 and the turn each asks for */
     CHECK(ffr_wall_case(1, 1, 0) == FFR_CASE_CORNER_LEFT);
     CHECK(ffr_wall_case_turn(FFR_CASE_CORNER_LEFT, FFR_SIDE_RIGHT) == 90);
     CHECK(ffr_wall_case(1, 0, 1) == FFR_CASE_CORNER_RIGHT);
@@ -28,7 +23,14 @@ void suite_wall_cases(void)
     CHECK(ffr_wall_case(0, 0, 0) == FFR_CASE_CORRIDOR);
     CHECK(ffr_wall_case_turn(FFR_CASE_CORRIDOR, FFR_SIDE_LEFT) == 0);
     CHECK(ffr_wall_case(0, 1, 1) == FFR_CASE_OPEN);
+}
 
+TEST(the_case_sensed_from_the_rangers_and_the_openings)
+{
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT];
+    ffr_openings_t op;
+    ffr_config_default(&cfg);
     /* sensed at a left corner: the front-left ranger now sees the wall
      * ahead, but the left wall was seen to end on the way in */
     rig_no_walls(&cfg, ir);
@@ -47,3 +49,7 @@ void suite_wall_cases(void)
     ir[FFR_IR_RF] = FFR_IR_NONE(&cfg);
     CHECK(ffr_wall_case_sensed(&cfg, ir, &op) == FFR_CASE_CORNER_RIGHT);
 }
+
+SUITE(wall_cases,
+      TEST_REF(the_six_cases_and_the_turn_each_asks_for),
+      TEST_REF(the_case_sensed_from_the_rangers_and_the_openings));

@@ -51,7 +51,7 @@ static int drive(ffr_wall_cal_t *c, const ffr_config_t *cfg, const rig_walls_t *
     return drive_worst(c, cfg, w, x, th, err, turn_per_mm, mm, dir_out, &worst);
 }
 
-static void the_walls_direction_in_odometrys_frame(void)
+TEST(the_walls_direction_in_odometrys_frame)
 {
     ffr_config_t cfg;
     ffr_wall_cal_t c;
@@ -80,7 +80,7 @@ static void the_walls_direction_in_odometrys_frame(void)
     }
 }
 
-static void not_a_straight_wall_along_the_travel(void)
+TEST(not_a_straight_wall_along_the_travel)
 {
     ffr_config_t cfg;
     ffr_wall_cal_t c;
@@ -122,8 +122,6 @@ static void not_a_straight_wall_along_the_travel(void)
     }
 }
 
-void suite_wall_direction(void)
-{
-    the_walls_direction_in_odometrys_frame();
-    not_a_straight_wall_along_the_travel();
-}
+SUITE(wall_direction,
+      TEST_REF(the_walls_direction_in_odometrys_frame),
+      TEST_REF(not_a_straight_wall_along_the_travel));

@@ -15,7 +15,7 @@ static float reading(const ffr_config_t *cfg, int i, float nx, float ny, float c
     return t > cfg->ir_max_mm ? FFR_IR_NONE(cfg) : t;
 }
 
-void suite_wall_follow(void)
+TEST(a_parallel_wall_on_target_needs_no_steering)
 {
     ffr_config_t cfg;
     float ir[FFR_IR_COUNT];
@@ -32,9 +32,18 @@ void suite_wall_follow(void)
     CHECK_NEAR(w.angle_rad, 0.0, 1e-3);
     /* on target and parallel: no steering */
     CHECK_NEAR(ffr_wall_follow_yaw(&cfg, &w, FFR_SIDE_LEFT), 0.0, 1e-3);
+}
 
-    /* the same wall with the robot turned 10 degrees toward it (wall appears
-     * rotated -10 degrees): steer right, away from it */
+TEST(turned_toward_a_wall_steers_away)
+{
+    /* the left wall 230 mm away with the robot turned 10 degrees toward it
+     * (wall appears rotated -10 degrees): steer right, away from it */
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT];
+    ffr_ir_geom_t g;
+    ffr_wall_t w;
+    ffr_config_default(&cfg);
+    rig_no_walls(&cfg, ir);
     {
         float a = -10.0f * FFR_DEG;
         float nx = -ffr_sinf(a), ny = ffr_cosf(a);
@@ -46,8 +55,17 @@ void suite_wall_follow(void)
         CHECK_NEAR(w.dist_mm, 230.0, 1.0);
         CHECK(ffr_wall_follow_yaw(&cfg, &w, FFR_SIDE_LEFT) < 0.0f);
     }
+}
+
+TEST(too_far_from_a_right_wall_steers_right_the_rear_ranger_alone_gives_distance)
+{
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT];
+    ffr_ir_geom_t g;
+    ffr_wall_t w;
+    ffr_config_default(&cfg);
+    rig_no_walls(&cfg, ir);
     /* too far from a right wall: steer right (negative yaw) */
-    ir[FFR_IR_LF] = ir[FFR_IR_LR] = FFR_IR_NONE(&cfg);
     ir[FFR_IR_RF] = reading(&cfg, FFR_IR_RF, 0.0f, -1.0f, 300.0f);
     ir[FFR_IR_RR] = reading(&cfg, FFR_IR_RR, 0.0f, -1.0f, 300.0f);
     w = ffr_wall_estimate(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_SIDE_RIGHT);
@@ -62,7 +80,18 @@ void suite_wall_follow(void)
     /* nothing on the left */
     w = ffr_wall_estimate(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_SIDE_LEFT);
     CHECK(!w.valid);
-    /* heading hold turns toward the reference */
+}
+
+TEST(heading_hold_turns_toward_the_reference)
+{
+    ffr_config_t cfg;
+    ffr_config_default(&cfg);
     CHECK(ffr_heading_hold_yaw(&cfg, 0.0f, 0.2f) > 0.0f);
     CHECK(ffr_heading_hold_yaw(&cfg, 0.0f, -0.2f) < 0.0f);
 }
+
+SUITE(wall_follow,
+      TEST_REF(a_parallel_wall_on_target_needs_no_steering),
+      TEST_REF(turned_toward_a_wall_steers_away),
+      TEST_REF(too_far_from_a_right_wall_steers_right_the_rear_ranger_alone_gives_distance),
+      TEST_REF(heading_hold_turns_toward_the_reference));

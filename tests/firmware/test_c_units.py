@@ -11,6 +11,9 @@ from pathlib import Path
 import pytest
 
 REPO = Path(__file__).resolve().parents[2]
+# the C unit tests: suites (one a file) and named tests (firmware/tests/main.c prints both)
+C_SUITES = 18
+C_TESTS = 76
 
 
 def _make(target: str) -> subprocess.CompletedProcess[str]:
@@ -23,8 +26,37 @@ def test_c_unit_tests_pass() -> None:
     run = subprocess.run([str(REPO / "build/host/ffr_unit_tests")], capture_output=True, text=True,
                          timeout=120)
     assert run.returncode == 0, run.stdout + run.stderr
-    m = re.search(r"(\d+) passed, (\d+) failed", run.stdout)
-    assert m and int(m.group(1)) > 100 and m.group(2) == "0"
+    m = re.search(r"firmware: (\d+) suites, (\d+) tests \((\d+) failed\), (\d+) checks passed, (\d+) failed",
+                  run.stdout)
+    assert m, run.stdout
+    # exact: a suite or test added (or lost) changes these; update them with it
+    assert (int(m.group(1)), int(m.group(2))) == (C_SUITES, C_TESTS)
+    assert m.group(3) == "0" and m.group(5) == "0" and int(m.group(4)) > 1000
+    listed = subprocess.run([str(REPO / "build/host/ffr_unit_tests"), "--list"], capture_output=True, text=True,
+                            timeout=60).stdout.split()
+    assert len(listed) == C_TESTS and len(set(listed)) == C_TESTS  # every test named, no name twice
+    assert len({name.split(".")[0] for name in listed}) == C_SUITES
+    # one suite a file, every file's suite run (main.c lists them)
+    assert len(list((REPO / "firmware" / "tests").glob("test_*.c"))) == C_SUITES
+
+
+def test_a_failed_c_check_names_its_test() -> None:
+    build = _make("build/host/ffr_unit_tests")
+    assert build.returncode == 0, build.stderr
+    run = subprocess.run([str(REPO / "build/host/ffr_unit_tests"), "--demo-failure"], capture_output=True,
+                         text=True, timeout=60)
+    assert run.returncode == 1
+    assert re.search(r"^FAIL firmware/tests/main\.c:\d+: unit_demo\.a_check_that_fails_on_purpose: 1 \+ 1 == 3$",
+                     run.stdout, re.M), run.stdout
+
+
+def test_one_c_test_runs_alone_by_its_name() -> None:
+    build = _make("build/host/ffr_unit_tests")
+    assert build.returncode == 0, build.stderr
+    run = subprocess.run([str(REPO / "build/host/ffr_unit_tests"), "odometry.counter_wrap_around_is_harmless"],
+                         capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0, run.stdout
+    assert "firmware: 1 suites, 1 tests (0 failed)" in run.stdout
 
 
 @pytest.mark.skipif(shutil.which("arm-none-eabi-gcc") is None,

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 
+from harness.events import parse_events
 from harness.loop import run_mission
 from harness.scenario import make_scenario
 from harness.scoring import ScoringRules, contest_score
@@ -18,6 +19,19 @@ def test_firmware_gives_up_is_error_with_reason() -> None:
     assert res.rooms_searched == 4
     assert res.score == ScoringRules.load().incomplete_score
     assert tuple(trace.actuators[-1, :2]) == (0, 0)
+
+
+@pytest.mark.parametrize("at_s", [15.6, 16.6])
+def test_flame_gone_during_the_approach_is_flame_lost(at_s: float) -> None:
+    # room 1's approach runs 15.15-16.83 s; both flame sensors read 0 from at_s on: the flame, seen
+    # near and approached, is gone without being put out and a re-scan does not find it (fail code 5)
+    ev = parse_events([{"at_s": at_s, "sensor": s, "fault": "dead"} for s in ("flame.L", "flame.R")], "test")
+    res, _ = run_mission(make_scenario(room=1, events=ev), record=False)
+    assert res.outcome == "error"
+    assert res.detail == "firmware: flame lost"
+    assert res.time_to_extinguish_s is None and res.rooms_searched == 0
+    # not before FFR_FLAME_LOST_MS (2 s) after the loss, nor long after (one re-scan turn: 2.4 s)
+    assert 2.0 <= res.sim_time_s - at_s <= 3.0
 
 
 def test_timeout_when_the_flame_still_burns() -> None:

@@ -1,0 +1,270 @@
+/*
+ * The room task's failures, through the whole firmware with plain inputs
+ * (the rig): the doorway line never met (in or out), a flame the fans do not
+ * put out, and a flame that, approached, vanishes without being put out.
+ */
+#include "ffr_internal.h"
+#include "rig.h"
+#include "unit.h"
+
+/* dark flame sensors (the rig's default) */
+#define DARK 20u
+/* a flame straight ahead at the approach's start: near (>= 4 x flame_detect
+ * in sum over the dark level, flame_detect 170 by default) */
+#define NEAR_EACH 900u
+
+/* A one-room route, started, through the doorway line and into the scan. */
+static int into_the_scan(rig_t *r, const ffr_config_t *cfg)
+{
+    rig_init(r, cfg);
+    r->in.start = 1;
+    rig_tick(r);
+    rig_line(r, 20, 4);
+    return rig_run_until_state(r, FFR_ST_SCAN, 400);
+}
+
+/* The scan meets a flame at 80 degrees (peak_each counts on each sensor),
+ * turns back to it and starts the approach with it ahead. */
+static int into_the_approach(rig_t *r, const ffr_config_t *cfg, uint16_t peak_each)
+{
+    int i;
+    if (!into_the_scan(r, cfg)) {
+        return 0;
+    }
+    for (i = 0; i < 600 && r->out.state == FFR_ST_SCAN; ++i) {
+        float deg = r->st.odo.heading_rad / FFR_DEG;
+        float s = (float)DARK;
+        if (deg > 60.0f && deg < 100.0f) {
+            s = (float)peak_each - ((float)peak_each - (float)DARK) * (deg - 80.0f) * (deg - 80.0f) / 400.0f;
+        }
+        r->in.flame[0] = r->in.flame[1] = (uint16_t)(s < (float)DARK ? (float)DARK : s);
+        rig_tick(r);
+    }
+    r->in.flame[0] = r->in.flame[1] = peak_each;
+    return rig_run_until_state(r, FFR_ST_APPROACH, 400);
+}
+
+/* ... and the approach stopped at the candle circle: fans on. */
+static int into_the_fans(rig_t *r, const ffr_config_t *cfg)
+{
+    int i;
+    if (!into_the_approach(r, cfg, NEAR_EACH)) {
+        return 0;
+    }
+    for (i = 0; i < 20; ++i) {
+        rig_tick(r);
+    }
+    rig_line(r, 0, 3);
+    rig_tick(r);
+    return r->out.state == FFR_ST_EXTINGUISH && r->out.fan == 1;
+}
+
+TEST(no_doorway_line_on_the_way_in_fails_no_line)
+{
+    /* over the class of limits: each fails once it has driven that far */
+    static const float limits[] = {150.0f, 450.0f, 900.0f};
+    unsigned k;
+    for (k = 0; k < sizeof(limits) / sizeof(limits[0]); ++k) {
+        ffr_config_t cfg;
+        rig_t r;
+        float at;
+        ffr_config_default(&cfg);
+        rig_room_route(&cfg, 0);
+        cfg.room_line_max_mm = limits[k];
+        rig_init(&r, &cfg);
+        r.in.start = 1;
+        CHECK(rig_run_until_state(&r, FFR_ST_FAILED, 3000));
+        CHECK(r.out.fail_code == FFR_FAIL_NO_LINE);
+        CHECK((r.out.flags & FFR_FLAG_IN_ROOM) == 0);
+        at = r.st.odo.dist_mm;
+        CHECK(at > limits[k] && at < limits[k] + 20.0f);
+        CHECK(r.out.pwm[0] == 0 && r.out.pwm[1] == 0);
+    }
+}
+
+TEST(no_doorway_line_on_the_way_out_fails_no_line)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    float out_from;
+    ffr_config_default(&cfg);
+    rig_room_route(&cfg, 0);
+    CHECK(into_the_scan(&r, &cfg));
+    /* a full turn, no flame: it turns to the door and drives out ... */
+    CHECK(rig_run_until_state(&r, FFR_ST_EXIT, 2000));
+    CHECK(rig_run_until_driving(&r, 400));
+    out_from = r.st.room.phase_start_mm;
+    /* ... and never meets the line: it fails beyond the way in and the slack */
+    CHECK(rig_run_until_state(&r, FFR_ST_FAILED, 3000));
+    CHECK(r.out.fail_code == FFR_FAIL_NO_LINE);
+    CHECK(r.st.odo.dist_mm - out_from > cfg.room_line_max_mm + cfg.room_entry_mm);
+    CHECK((r.out.flags & FFR_FLAG_IN_ROOM) != 0);
+    CHECK(r.out.rooms_searched == 0);
+}
+
+TEST(a_flame_the_fans_never_put_out_fails_not_out)
+{
+    /* each number of attempts: the fans run that many times their timeout */
+    uint8_t attempts;
+    for (attempts = 1; attempts <= 3; ++attempts) {
+        ffr_config_t cfg;
+        rig_t r;
+        uint32_t fans_from, ticks;
+        ffr_config_default(&cfg);
+        rig_room_route(&cfg, 0);
+        cfg.fan_attempts = attempts;
+        cfg.fan_timeout_ms = 1000u;
+        CHECK(into_the_fans(&r, &cfg));
+        fans_from = r.st.t_ms;
+        CHECK(rig_run_until_state(&r, FFR_ST_FAILED, 2000));
+        CHECK(r.out.fail_code == FFR_FAIL_NOT_OUT);
+        CHECK(r.out.fan == 0);
+        CHECK((r.out.flags & FFR_FLAG_EXTINGUISHED) == 0);
+        ticks = r.st.t_ms - fans_from;
+        CHECK(ticks >= (uint32_t)attempts * cfg.fan_timeout_ms - 20u
+              && ticks <= (uint32_t)attempts * cfg.fan_timeout_ms + 40u);
+    }
+}
+
+TEST(a_flame_that_keeps_coming_back_fails_not_out)
+{
+    /* out, then burning again while it is watched: the fans again, and after
+     * fan_attempts of that, failed */
+    ffr_config_t cfg;
+    rig_t r;
+    int round, seen_verify = 0;
+    ffr_config_default(&cfg);
+    rig_room_route(&cfg, 0);
+    CHECK(into_the_fans(&r, &cfg));
+    for (round = 0; round < 10 && r.out.state != FFR_ST_FAILED; ++round) {
+        r.in.flame[0] = r.in.flame[1] = DARK;
+        if (rig_run_until_state(&r, FFR_ST_VERIFY, 200)) {
+            seen_verify++;
+        }
+        r.in.flame[0] = r.in.flame[1] = NEAR_EACH;
+        rig_run_until_state(&r, FFR_ST_EXTINGUISH, 5);
+        rig_run_until_state(&r, FFR_ST_FAILED, 1);
+    }
+    CHECK(seen_verify == (int)cfg.fan_attempts);
+    CHECK(r.out.state == FFR_ST_FAILED);
+    CHECK(r.out.fail_code == FFR_FAIL_NOT_OUT);
+    CHECK((r.out.flags & FFR_FLAG_EXTINGUISHED) == 0);
+}
+
+TEST(an_approached_flame_lost_and_not_found_again_fails_lost_flame)
+{
+    /* at the default scan rate and faster ones (a turn in 2.4 s to 0.4 s):
+     * never sooner than FFR_FLAME_LOST_MS after the loss, and soon after */
+    static const float rates[] = {150.0f, 400.0f, 900.0f};
+    unsigned k;
+    for (k = 0; k < sizeof(rates) / sizeof(rates[0]); ++k) {
+        ffr_config_t cfg;
+        rig_t r;
+        uint32_t lost_at;
+        float turn_ms;
+        int i;
+        ffr_config_default(&cfg);
+        rig_room_route(&cfg, 0);
+        cfg.scan_rate_deg_s = rates[k];
+        CHECK(into_the_approach(&r, &cfg, NEAR_EACH));
+        for (i = 0; i < 10; ++i) {
+            rig_tick(&r);
+        }
+        CHECK(r.out.state == FFR_ST_APPROACH);
+        /* gone, not put out */
+        r.in.flame[0] = r.in.flame[1] = DARK;
+        rig_tick(&r);
+        CHECK(r.out.state == FFR_ST_SCAN);
+        lost_at = r.st.t_ms;
+        CHECK(rig_run_until_state(&r, FFR_ST_FAILED, 2000));
+        CHECK(r.out.fail_code == FFR_FAIL_LOST_FLAME);
+        CHECK((r.out.flags & FFR_FLAG_EXTINGUISHED) == 0);
+        CHECK(r.out.fan == 0 && r.out.pwm[0] == 0 && r.out.pwm[1] == 0);
+        /* the stated time at least, and a full turn of the re-scan at least
+         * (by odometry); not much longer than the longer of the two */
+        turn_ms = 360.0f / rates[k] * 1000.0f;
+        CHECK(r.st.t_ms - lost_at >= FFR_FLAME_LOST_MS);
+        CHECK(ffr_absf(r.st.odo.heading_rad - r.st.room.start_heading_rad) >= 2.0f * FFR_PI);
+        CHECK((float)(r.st.t_ms - lost_at)
+              <= (turn_ms > (float)FFR_FLAME_LOST_MS ? 1.2f * turn_ms : (float)FFR_FLAME_LOST_MS) + 300.0f);
+    }
+}
+
+TEST(a_flame_lost_and_found_again_is_approached_again)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    int i;
+    ffr_config_default(&cfg);
+    rig_room_route(&cfg, 0);
+    CHECK(into_the_approach(&r, &cfg, NEAR_EACH));
+    r.in.flame[0] = r.in.flame[1] = DARK;
+    rig_tick(&r);
+    CHECK(r.out.state == FFR_ST_SCAN);
+    CHECK(r.st.room.lost_since_ms != 0u);
+    /* it burns again within the re-scan's turn: seen, faced, approached */
+    for (i = 0; i < 30; ++i) {
+        rig_tick(&r);
+    }
+    r.in.flame[0] = r.in.flame[1] = NEAR_EACH;
+    rig_tick(&r);
+    r.in.flame[0] = r.in.flame[1] = DARK + 40u;
+    CHECK(rig_run_until_state(&r, FFR_ST_APPROACH, 600));
+    CHECK(r.st.room.lost_since_ms == 0u);
+    CHECK((r.out.flags & FFR_FLAG_FAILED) == 0);
+}
+
+TEST(a_far_flame_lost_is_searched_for_elsewhere)
+{
+    /* a flame only ever seen weak (never near) and lost: no "flame lost"; a
+     * full re-scan without it leaves the room, as for a room without one */
+    ffr_config_t cfg;
+    rig_t r;
+    int i;
+    ffr_config_default(&cfg);
+    rig_room_route(&cfg, 0);
+    CHECK(into_the_approach(&r, &cfg, 300u));
+    for (i = 0; i < 5; ++i) {
+        rig_tick(&r);
+    }
+    CHECK(r.out.state == FFR_ST_APPROACH);
+    CHECK(r.st.room.flame_near == 0);
+    r.in.flame[0] = r.in.flame[1] = DARK;
+    rig_tick(&r);
+    CHECK(r.out.state == FFR_ST_SCAN);
+    CHECK(r.st.room.lost_since_ms == 0u);
+    CHECK(rig_run_until_state(&r, FFR_ST_EXIT, 2000));
+    CHECK((r.out.flags & FFR_FLAG_FAILED) == 0);
+}
+
+TEST(leaving_hands_the_heading_out_to_the_route)
+{
+    /* room.c returns the heading out; route.c takes it as its reference,
+     * and counts the room once the robot is out */
+    ffr_config_t cfg;
+    rig_t r;
+    float in_heading;
+    ffr_config_default(&cfg);
+    rig_room_route(&cfg, 0);
+    CHECK(into_the_scan(&r, &cfg));
+    in_heading = r.st.room.entry_heading_rad;
+    CHECK(rig_run_until_state(&r, FFR_ST_EXIT, 2000));
+    CHECK(rig_run_until_driving(&r, 400));
+    CHECK(r.st.route.heading_ref_rad == r.st.room.exit_heading_rad);
+    CHECK_NEAR(ffr_wrap_pi(r.st.route.heading_ref_rad - in_heading - FFR_PI), 0.0, 1e-4);
+    CHECK(r.out.rooms_searched == 0);
+    rig_line(&r, 0, 3);
+    CHECK(rig_run_until_state(&r, FFR_ST_FAILED, 400)); /* the one-room route ends: no flame */
+    CHECK(r.out.fail_code == FFR_FAIL_NO_FLAME);
+    CHECK(r.out.rooms_searched == 1);
+}
+
+SUITE(room,
+      TEST_REF(no_doorway_line_on_the_way_in_fails_no_line),
+      TEST_REF(no_doorway_line_on_the_way_out_fails_no_line),
+      TEST_REF(a_flame_the_fans_never_put_out_fails_not_out),
+      TEST_REF(a_flame_that_keeps_coming_back_fails_not_out),
+      TEST_REF(an_approached_flame_lost_and_not_found_again_fails_lost_flame),
+      TEST_REF(a_flame_lost_and_found_again_is_approached_again),
+      TEST_REF(a_far_flame_lost_is_searched_for_elsewhere),
+      TEST_REF(leaving_hands_the_heading_out_to_the_route));
