@@ -86,8 +86,9 @@ def point_in_convex(px: float, py: float, poly: np.ndarray) -> bool:
     for i in range(n):
         x1 = poly[i, 0]
         y1 = poly[i, 1]
-        x2 = poly[(i + 1) % n, 0]
-        y2 = poly[(i + 1) % n, 1]
+        j = i + 1 if i + 1 < n else 0  # (i + 1) % n without the integer division (hot path)
+        x2 = poly[j, 0]
+        y2 = poly[j, 1]
         if (x2 - x1) * (py - y1) - (y2 - y1) * (px - x1) < 0.0:
             return False
     return True

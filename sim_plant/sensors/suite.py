@@ -29,7 +29,13 @@ from sim_plant.sensors.channels import (
 )
 from sim_plant.sensors.encoders import encoder_counts
 from sim_plant.sensors.flame_sensor import FlameModel, flame_sensor_fc, point_fc, reflected_fc
-from sim_plant.sensors.gp2d12 import IR_MV_MAX, Gp2d12Model, beam_distance, mv_of_distance
+from sim_plant.sensors.gp2d12 import (
+    IR_MV_MAX,
+    Gp2d12Model,
+    beam_distance_tab,
+    beam_table,
+    mv_of_distance,
+)
 from sim_plant.sensors.line_sensor import door_segments, white_fraction
 from sim_plant.sensors.models import FLICKER_RATIO, draw_flame, draw_ranger_timing
 from sim_plant.sensors.noise import (
@@ -77,7 +83,8 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
                    lit: bool, out: np.ndarray, ir_cfg: np.ndarray, ir_state: np.ndarray,
                    cfg: np.ndarray, st: np.ndarray, edges: np.ndarray, wall_polys: np.ndarray,
                    doors: np.ndarray, npar: np.ndarray, normals: np.ndarray,
-                   uniforms: np.ndarray, npos: np.ndarray, srcs: np.ndarray) -> bool:
+                   uniforms: np.ndarray, npos: np.ndarray, srcs: np.ndarray,
+                   beam: np.ndarray, scratch: np.ndarray) -> bool:
     c = math.cos(theta)
     s = math.sin(theta)
     first = st[S_INIT] == 0.0
@@ -101,9 +108,9 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
             sa = ir_cfg[i, _SA]
             px = x + c * bx - s * by
             py = y + s * bx + c * by
-            d = beam_distance(px, py, c * ca - s * sa, s * ca + c * sa, cfg[C_BEAM_HALF],
-                              int(cfg[C_BEAM_N]), edges, wall_polys, cfg[C_MAX_RANGE],
-                              cfg[C_CX], cfg[C_CY], cfg[C_OBS_R])
+            d = beam_distance_tab(px, py, c * ca - s * sa, s * ca + c * sa, beam, edges,
+                                  wall_polys, scratch, cfg[C_MAX_RANGE], cfg[C_CX], cfg[C_CY],
+                                  cfg[C_OBS_R])
             mv = mv_of_distance(d)
             ir_state[i, _DIST] = d
             ir_state[i, _CLEAN] = mv
@@ -292,9 +299,12 @@ class SensorSuite:
         if srcs.ndim != 2 or srcs.shape[1] != 4:
             raise ValueError(f"ir_sources must be (n, 4): x, y, z, strength; got {srcs.shape}")
         self._srcs = np.ascontiguousarray(srcs)
+        # the beam's rotations once (gp2d12.beam_table), and the scratch its wedge filter fills
+        self._beam = beam_table(float(cfg[C_BEAM_HALF]), int(cfg[C_BEAM_N]))
         self._args = (self._ir_cfg, self._ir_state, cfg, self._st, arena.wall_edges,
                       arena.wall_polys, door_segments(arena), self.noise.packed(),
-                      self._stream.normals, self._stream.uniforms, self._stream.pos, self._srcs)
+                      self._stream.normals, self._stream.uniforms, self._stream.pos, self._srcs,
+                      self._beam, np.empty((arena.wall_edges.shape[0], 4)))
         self._checked_out: np.ndarray | None = None
 
     def sample(self, t: float, x: float, y: float, theta: float, phi_l: float, phi_r: float,
