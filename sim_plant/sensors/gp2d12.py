@@ -202,6 +202,26 @@ def beam_table(half: float, n_rays: int) -> np.ndarray:
     tab = np.empty((n + 1, 2))
     tab[0, 0] = math.cos(half)
     tab[0, 1] = math.sin(half)
+    tab[1, 0] = 1.0  # one ray: no rotation (row 1 is not read)
+    tab[1, 1] = 0.0
+    if n > 1:
+        for j in range(n):
+            o = -half + 2.0 * half * j / (n - 1)
+            tab[1 + j, 0] = math.cos(o)
+            tab[1 + j, 1] = math.sin(o)
+    return tab
+
+
+def beam_table_py(half: float, n_rays: int) -> np.ndarray:
+    """``beam_table`` in plain Python, for the sensor suite: the same operations on the same
+    doubles and the same C library's cos and sin, so the same table (tested bit for bit), and
+    no compiled kernel to load at start-up (each costs ~10 ms, docs/architecture.md)."""
+    n = 1 if half <= 0.0 or n_rays <= 1 else n_rays
+    tab = np.empty((n + 1, 2))
+    tab[0, 0] = math.cos(half)
+    tab[0, 1] = math.sin(half)
+    tab[1, 0] = 1.0  # one ray: no rotation (row 1 is not read)
+    tab[1, 1] = 0.0
     if n > 1:
         for j in range(n):
             o = -half + 2.0 * half * j / (n - 1)

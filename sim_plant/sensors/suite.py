@@ -33,7 +33,7 @@ from sim_plant.sensors.gp2d12 import (
     IR_MV_MAX,
     Gp2d12Model,
     beam_distance_tab,
-    beam_table,
+    beam_table_py,
     mv_of_distance,
 )
 from sim_plant.sensors.line_sensor import door_segments, white_fraction
@@ -299,8 +299,8 @@ class SensorSuite:
         if srcs.ndim != 2 or srcs.shape[1] != 4:
             raise ValueError(f"ir_sources must be (n, 4): x, y, z, strength; got {srcs.shape}")
         self._srcs = np.ascontiguousarray(srcs)
-        # the beam's rotations once (gp2d12.beam_table), and the scratch its wedge filter fills
-        self._beam = beam_table(float(cfg[C_BEAM_HALF]), int(cfg[C_BEAM_N]))
+        # the beam's rotations once (gp2d12.beam_table_py), and the scratch its wedge filter fills
+        self._beam = beam_table_py(float(cfg[C_BEAM_HALF]), int(cfg[C_BEAM_N]))
         self._args = (self._ir_cfg, self._ir_state, cfg, self._st, arena.wall_edges,
                       arena.wall_polys, door_segments(arena), self.noise.packed(),
                       self._stream.normals, self._stream.uniforms, self._stream.pos, self._srcs,

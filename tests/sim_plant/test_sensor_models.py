@@ -377,3 +377,40 @@ def test_beam_edge_filter_changes_no_distance(arena: Arena, seed: int) -> None:
             dx, dy = math.cos(a) * math.cos(o) - math.sin(a) * math.sin(o), \
                 math.cos(a) * math.sin(o) + math.sin(a) * math.cos(o)
             assert ray_cast(px, py, dx, dy, sub, 4.0) == ray_cast(px, py, dx, dy, e, 4.0)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_beam_table_in_python_is_the_compiled_one_bit_for_bit(seed: int) -> None:
+    """The suite builds the beam's rotations in Python (no kernel to load at start-up); they must
+    be the very doubles the compiled ``beam_table`` (the per-ray expressions) gives, over the
+    whole range of half-angles and ray counts, the one-ray cases included."""
+    from sim_plant.sensors.gp2d12 import beam_table, beam_table_py
+    rng = np.random.default_rng(seed)
+    halves = [0.0, -0.1, *np.radians(rng.uniform(0.0, 45.0, 60))]
+    for h in halves:
+        for n in range(0, 12):
+            py, nb_ = beam_table_py(float(h), n), beam_table(float(h), n)
+            assert py.shape == nb_.shape == ((n if h > 0.0 and n > 1 else 1) + 1, 2)
+            assert py.tobytes() == nb_.tobytes()
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_beam_with_reused_scratch_is_the_fresh_beam(arena: Arena, seed: int) -> None:
+    """The sensors keep one scratch buffer for the wedge's edges across measurements: a buffer
+    left full by earlier measurements must change no distance (random poses, aims, beams, with
+    and without the candle's base as a target)."""
+    from sim_plant.sensors.gp2d12 import beam_distance_tab, beam_table_py
+    rng = np.random.default_rng(seed)
+    e, polys = arena.wall_edges, arena.wall_polys
+    scratch = np.empty((e.shape[0], 4))
+    for _ in range(300):
+        px, py = rng.uniform(0.03, 2.41, 2)
+        a = rng.uniform(-math.pi, math.pi)
+        h = math.radians(rng.uniform(0.0, 20.0))
+        n = int(rng.integers(1, 9))
+        obs = float(rng.choice([0.0, 0.04]))
+        cx, cy = rng.uniform(0.3, 2.1, 2)
+        got = beam_distance_tab(px, py, math.cos(a), math.sin(a), beam_table_py(h, n), e, polys,
+                                scratch, 4.0, cx, cy, obs)
+        want = beam_distance(px, py, math.cos(a), math.sin(a), h, n, e, polys, 4.0, cx, cy, obs)
+        assert got == want
