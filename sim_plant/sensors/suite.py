@@ -28,7 +28,13 @@ from sim_plant.sensors.channels import (
     N_CHANNELS,
 )
 from sim_plant.sensors.encoders import encoder_counts
-from sim_plant.sensors.flame_sensor import FlameModel, flame_sensor_fc, point_fc, reflected_fc
+from sim_plant.sensors.flame_sensor import (
+    FlameModel,
+    edge_normals,
+    flame_sensor_fc,
+    point_fc,
+    reflected_fc_tab,
+)
 from sim_plant.sensors.gp2d12 import (
     IR_MV_MAX,
     Gp2d12Model,
@@ -84,7 +90,7 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
                    cfg: np.ndarray, st: np.ndarray, edges: np.ndarray, wall_polys: np.ndarray,
                    doors: np.ndarray, npar: np.ndarray, normals: np.ndarray,
                    uniforms: np.ndarray, npos: np.ndarray, srcs: np.ndarray,
-                   beam: np.ndarray, scratch: np.ndarray) -> bool:
+                   beam: np.ndarray, scratch: np.ndarray, enorm: np.ndarray) -> bool:
     c = math.cos(theta)
     s = math.sin(theta)
     first = st[S_INIT] == 0.0
@@ -156,9 +162,10 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
                 by = side * cfg[C_FY]
                 px = x + c * cfg[C_FX] - s * by
                 py = y + s * cfg[C_FX] + c * by
-                fc += cfg[C_REFL] * reflected_fc(px, py, cfg[C_FZ], theta + side * cfg[C_AIM],
-                                                 cfg[C_CX], cfg[C_CY], cfg[C_CZ], edges,
-                                                 cfg[C_HALF], cfg[C_RMIN])
+                fc += cfg[C_REFL] * reflected_fc_tab(px, py, cfg[C_FZ],
+                                                     theta + side * cfg[C_AIM], cfg[C_CX],
+                                                     cfg[C_CY], cfg[C_CZ], edges, enorm,
+                                                     cfg[C_HALF], cfg[C_RMIN])
             fc = scale * fc
         if srcs.shape[0] > 0:
             by = side * cfg[C_FY]
@@ -304,7 +311,8 @@ class SensorSuite:
         self._args = (self._ir_cfg, self._ir_state, cfg, self._st, arena.wall_edges,
                       arena.wall_polys, door_segments(arena), self.noise.packed(),
                       self._stream.normals, self._stream.uniforms, self._stream.pos, self._srcs,
-                      self._beam, np.empty((arena.wall_edges.shape[0], 4)))
+                      self._beam, np.empty((arena.wall_edges.shape[0], 4)),
+                      edge_normals(arena.wall_edges))
         self._checked_out: np.ndarray | None = None
 
     def sample(self, t: float, x: float, y: float, theta: float, phi_l: float, phi_r: float,

@@ -414,3 +414,26 @@ def test_beam_with_reused_scratch_is_the_fresh_beam(arena: Arena, seed: int) -> 
                                 scratch, 4.0, cx, cy, obs)
         want = beam_distance(px, py, math.cos(a), math.sin(a), h, n, e, polys, 4.0, cx, cy, obs)
         assert got == want
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_reflections_with_edge_table_are_the_reference(arena: Arena, seed: int) -> None:
+    """The suite reads each edge's length and normal from a table made once (edge_normals):
+    every reflected light must be the very double ``reflected_fc`` computes (random sensor and
+    source positions, heights and aims over the whole arena, in the arena with furniture too)."""
+    from sim_plant.furniture import draw_furniture, furnish
+    from sim_plant.sensors.flame_sensor import edge_normals, reflected_fc_tab
+    rng = np.random.default_rng(seed)
+    pieces = draw_furniture(arena, 3, arena.room(2).default_candle, np.random.default_rng(seed))
+    arenas = [arena, furnish(arena, pieces)]
+    assert arenas[1].wall_edges.shape[0] > arena.wall_edges.shape[0]
+    for ar in arenas:
+        e = ar.wall_edges
+        en = edge_normals(e)
+        for _ in range(300):
+            px, py, sx, sy = rng.uniform(0.03, 2.41, 4)
+            pz, sz = rng.uniform(0.05, 0.3, 2)
+            aim = rng.uniform(-math.pi, math.pi)
+            half = math.radians(rng.uniform(20.0, 90.0))
+            want = reflected_fc(px, py, pz, aim, sx, sy, sz, e, half, 0.02)
+            assert reflected_fc_tab(px, py, pz, aim, sx, sy, sz, e, en, half, 0.02) == want
