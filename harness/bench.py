@@ -81,11 +81,11 @@ def _sensors_loop(tf: np.ndarray, phi: np.ndarray, lit: np.ndarray, hw: np.ndarr
                   edges: np.ndarray, wall_polys: np.ndarray, doors: np.ndarray, npar: np.ndarray,
                   normals: np.ndarray, uniforms: np.ndarray, npos: np.ndarray,
                   srcs: np.ndarray, beam: np.ndarray, scratch: np.ndarray,
-                  enorm: np.ndarray) -> None:
+                  enorm: np.ndarray, esoa: np.ndarray) -> None:
     for k in range(tf.shape[0]):
         if _sample_kernel(tf[k, 0], tf[k, 1], tf[k, 2], tf[k, 3], phi[k, 0], phi[k, 1], lit[k],
                           hw, ir_cfg, ir_state, cfg, st, edges, wall_polys, doors, npar,
-                          normals, uniforms, npos, srcs, beam, scratch, enorm):
+                          normals, uniforms, npos, srcs, beam, scratch, enorm, esoa):
             npos[0] = 0  # reuse the block: the cost is the same, the numbers need not be
             npos[1] = 0
 

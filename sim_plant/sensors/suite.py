@@ -17,6 +17,7 @@ import numpy as np
 
 from sim_plant.arena import Arena
 from sim_plant.candle import Candle
+from sim_plant.geometry import edges_soa
 from sim_plant.robot import IR_NAMES, RobotParams
 from sim_plant.sensors.channels import (
     CH_ENC_L,
@@ -90,7 +91,8 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
                    cfg: np.ndarray, st: np.ndarray, edges: np.ndarray, wall_polys: np.ndarray,
                    doors: np.ndarray, npar: np.ndarray, normals: np.ndarray,
                    uniforms: np.ndarray, npos: np.ndarray, srcs: np.ndarray,
-                   beam: np.ndarray, scratch: np.ndarray, enorm: np.ndarray) -> bool:
+                   beam: np.ndarray, scratch: np.ndarray, enorm: np.ndarray,
+                   esoa: np.ndarray) -> bool:
     c = math.cos(theta)
     s = math.sin(theta)
     first = st[S_INIT] == 0.0
@@ -157,14 +159,14 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
         if scale > 0.0:
             fc = flame_sensor_fc(x, y, c, s, cfg[C_FX], side * cfg[C_FY], cfg[C_FZ],
                                  side * cfg[C_AIM], theta, cfg[C_CX], cfg[C_CY], cfg[C_CZ],
-                                 edges, cfg[C_HALF], cfg[C_RMIN])
+                                 esoa, cfg[C_HALF], cfg[C_RMIN])
             if cfg[C_REFL] > 0.0:
                 by = side * cfg[C_FY]
                 px = x + c * cfg[C_FX] - s * by
                 py = y + s * cfg[C_FX] + c * by
                 fc += cfg[C_REFL] * reflected_fc_tab(px, py, cfg[C_FZ],
                                                      theta + side * cfg[C_AIM], cfg[C_CX],
-                                                     cfg[C_CY], cfg[C_CZ], edges, enorm,
+                                                     cfg[C_CY], cfg[C_CZ], esoa, enorm,
                                                      cfg[C_HALF], cfg[C_RMIN])
             fc = scale * fc
         if srcs.shape[0] > 0:
@@ -173,7 +175,7 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
             py = y + s * cfg[C_FX] + c * by
             for q in range(srcs.shape[0]):
                 fc += srcs[q, 3] * point_fc(px, py, cfg[C_FZ], theta + side * cfg[C_AIM],
-                                            srcs[q, 0], srcs[q, 1], srcs[q, 2], edges,
+                                            srcs[q, 0], srcs[q, 1], srcs[q, 2], esoa,
                                             cfg[C_HALF], cfg[C_RMIN])
         st[S_FC_L + j] = fc
         v = cfg[C_GAIN] * fc + cfg[C_DARK]
@@ -312,7 +314,7 @@ class SensorSuite:
                       arena.wall_polys, door_segments(arena), self.noise.packed(),
                       self._stream.normals, self._stream.uniforms, self._stream.pos, self._srcs,
                       self._beam, np.empty((arena.wall_edges.shape[0], 4)),
-                      edge_normals(arena.wall_edges))
+                      edge_normals(arena.wall_edges), edges_soa(arena.wall_edges))
         self._checked_out: np.ndarray | None = None
 
     def sample(self, t: float, x: float, y: float, theta: float, phi_l: float, phi_r: float,
