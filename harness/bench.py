@@ -7,10 +7,15 @@ One run prints, each goal beside its measured number and whether it is met:
   floor (``ffr_step`` in a tight compiled loop over the mission's inputs);
 * a whole mission, in-process (``ctypes:``): room 4 through the compiled loop
   (harness/tick.py) and through the Python loop, real-time factors;
+* room 4 with the realistic profile (seeds 0-2) against the nominal mission:
+  the goal is at most 2x the time per simulated second (CPU time);
 * ``ffr sweep``'s engine with typical noise, in missions per minute: one core
   in this process, two forked worker processes (the local default), and local
-  Dask clusters of one and two workers;
-* start-up: ``python -m harness run --room 1`` as a whole process, warm cache.
+  Dask clusters of one and two workers; then the realistic profile on two
+  forked workers, at most 2x the CPU per mission of typical noise;
+* start-up: ``python -m harness run --room 1`` as a whole process, warm cache
+  (numba's and the .pyc files), beside the numba floor (import numpy and
+  numba, call one cached kernel) that any such process pays.
 
 ``FFR_BENCH_MISSIONS`` (default 1000) sets the sweep size; ``FFR_BENCH_QUICK=1``
 a smaller everything (a smoke run). Timings on a shared machine are noisy:
