@@ -95,7 +95,9 @@ def mission_kernel(fn_step: int, st_ptr: int, in_ptr: int, out_ptr: int,
                    ir_cfg: np.ndarray, ir_state: np.ndarray, scfg: np.ndarray, sst: np.ndarray,
                    edges: np.ndarray, wall_polys: np.ndarray, doors: np.ndarray, npar: np.ndarray,
                    normals: np.ndarray, uniforms: np.ndarray, npos: np.ndarray,
-                   srcs: np.ndarray, rng: np.random.Generator,
+                   srcs: np.ndarray, beam: np.ndarray, scratch: np.ndarray,
+                   enorm: np.ndarray, esoa: np.ndarray,
+                   rng: np.random.Generator,
                    ev: np.ndarray, ev_state: np.ndarray, ev_active: np.ndarray,
                    S: np.ndarray, P: np.ndarray, poly: np.ndarray, walls: np.ndarray,
                    bbox: np.ndarray, n_sub: int,
@@ -113,7 +115,7 @@ def mission_kernel(fn_step: int, st_ptr: int, in_ptr: int, out_ptr: int,
         t = t_ms / 1000.0
         if _sample_kernel(t, S[S_X], S[S_Y], S[S_TH], S[S_LEFT + 2], S[S_RIGHT + 2],
                           cs[CS_LIT] != 0.0, hw, ir_cfg, ir_state, scfg, sst, edges, wall_polys,
-                          doors, npar, normals, uniforms, npos, srcs):
+                          doors, npar, normals, uniforms, npos, srcs, beam, scratch, enorm, esoa):
             # NoiseStream.refill: the normals, then the uniforms, from the one Generator
             for i in range(normals.shape[0]):
                 normals[i] = rng.standard_normal()

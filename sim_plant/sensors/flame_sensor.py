@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from sim_plant.geometry import segment_blocked
+from sim_plant.geometry import segment_blocked, segment_blocked_soa
 
 INTENSITY_COEFF = 0.0125  # foot-candles * m^2, the paper's eq. (9)
 
@@ -64,10 +64,11 @@ def flame_intensity(r: float, dtheta: float, half_width: float, r_min: float) ->
 @nb.njit(cache=True)
 def flame_sensor_fc(x: float, y: float, c: float, s: float, bx: float, by: float, bz: float,
                     aim: float, theta: float, fx: float, fy: float, fz: float,
-                    edges: np.ndarray, half_width: float, r_min: float) -> float:
+                    walls: np.ndarray, half_width: float, r_min: float) -> float:
     """Light (fc) on a sensor at body (bx, by, bz) aimed at ``aim`` rad, robot at (x, y, θ).
 
     ``c``, ``s`` are cos θ, sin θ; (fx, fy, fz) is the flame. 0 when a wall is in between.
+    ``walls``: the wall edges as ``geometry.edges_soa`` lays them out.
     """
     px = x + c * bx - s * by
     py = y + s * bx + c * by
@@ -79,7 +80,7 @@ def flame_sensor_fc(x: float, y: float, c: float, s: float, bx: float, by: float
     k = flame_k(dth, half_width)
     if k == 0.0:
         return 0.0
-    if segment_blocked(px, py, fx, fy, edges):
+    if segment_blocked_soa(px, py, fx, fy, walls):
         return 0.0
     r = math.sqrt(dx * dx + dy * dy + dz * dz)
     r = max(r, r_min)
@@ -88,9 +89,9 @@ def flame_sensor_fc(x: float, y: float, c: float, s: float, bx: float, by: float
 
 @nb.njit(cache=True)
 def point_fc(px: float, py: float, pz: float, aim: float, sx: float, sy: float, sz: float,
-             edges: np.ndarray, half_width: float, r_min: float) -> float:
+             walls: np.ndarray, half_width: float, r_min: float) -> float:
     """Eq. (9) light (fc) of a unit point source at (sx, sy, sz) on a sensor at (px, py, pz)
-    aimed at ``aim`` (rad, world frame); 0 when a wall is in between."""
+    aimed at ``aim`` (rad, world frame); 0 when a wall is in between (``walls``: edges_soa)."""
     dx = sx - px
     dy = sy - py
     dz = sz - pz
@@ -99,7 +100,7 @@ def point_fc(px: float, py: float, pz: float, aim: float, sx: float, sy: float, 
     k = flame_k(dth, half_width)
     if k == 0.0:
         return 0.0
-    if segment_blocked(px, py, sx, sy, edges):
+    if segment_blocked_soa(px, py, sx, sy, walls):
         return 0.0
     r = max(math.sqrt(dx * dx + dy * dy + dz * dz), r_min)
     return INTENSITY_COEFF * k / (r * r)
@@ -155,6 +156,72 @@ def reflected_fc(px: float, py: float, pz: float, aim: float, sx: float, sy: flo
         qx = rx + _NUDGE * nx
         qy = ry + _NUDGE * ny
         if segment_blocked(px, py, qx, qy, edges) or segment_blocked(sx, sy, qx, qy, edges):
+            continue
+        dz = sz - pz
+        r = max(math.sqrt(dx * dx + dy * dy + dz * dz), r_min)
+        total += INTENSITY_COEFF * k / (r * r)
+    return total
+
+
+def edge_normals(edges: np.ndarray) -> np.ndarray:
+    """Per wall edge: its length, unit outward normal and squared length (ln, nx, ny, ln * ln),
+    made once per sensor suite for ``reflected_fc_tab``: the operations ``reflected_fc`` does per
+    edge per call, in the same order on the same doubles (sqrt and division are correctly rounded
+    in Python as in compiled code), so the same numbers (tested bit for bit)."""
+    out = np.zeros((edges.shape[0], 4))
+    for i in range(edges.shape[0]):
+        ex = float(edges[i, 2]) - float(edges[i, 0])
+        ey = float(edges[i, 3]) - float(edges[i, 1])
+        ln = math.sqrt(ex * ex + ey * ey)
+        out[i, 0] = ln
+        if ln > 0.0:
+            out[i, 1] = ey / ln
+            out[i, 2] = -ex / ln
+            out[i, 3] = ln * ln
+    return out
+
+
+@nb.njit(cache=True)
+def reflected_fc_tab(px: float, py: float, pz: float, aim: float, sx: float, sy: float, sz: float,
+                     walls: np.ndarray, en: np.ndarray, half_width: float, r_min: float) -> float:
+    """``reflected_fc`` with the edges as ``geometry.edges_soa`` lays them out (``walls``) and
+    each edge's length and normal from ``edge_normals`` (what the sensor suite calls every tick):
+    no square root and no division per edge before the face tests, and the line-of-sight tests
+    on ``segment_blocked_soa``. The same numbers as ``reflected_fc`` (tested bit for bit)."""
+    total = 0.0
+    for i in range(walls.shape[1]):
+        ln = en[i, 0]
+        if ln <= 0.0:
+            continue
+        ax = walls[0, i]
+        ay = walls[1, i]
+        nx = en[i, 1]
+        ny = en[i, 2]
+        ds = (px - ax) * nx + (py - ay) * ny
+        df = (sx - ax) * nx + (sy - ay) * ny
+        if ds <= 0.0 or df <= 0.0:
+            continue
+        ex = walls[2, i]
+        ey = walls[3, i]
+        ix = sx - 2.0 * df * nx
+        iy = sy - 2.0 * df * ny
+        u = ds / (ds + df)
+        rx = px + u * (ix - px)
+        ry = py + u * (iy - py)
+        s = ((rx - ax) * ex + (ry - ay) * ey) / en[i, 3]
+        if s < 0.0 or s > 1.0:
+            continue
+        dx = ix - px
+        dy = iy - py
+        dth = math.atan2(dy, dx) - aim
+        dth = (dth + math.pi) % (2.0 * math.pi) - math.pi
+        k = flame_k(dth, half_width)
+        if k == 0.0:
+            continue
+        qx = rx + _NUDGE * nx
+        qy = ry + _NUDGE * ny
+        if (segment_blocked_soa(px, py, qx, qy, walls)
+                or segment_blocked_soa(sx, sy, qx, qy, walls)):
             continue
         dz = sz - pz
         r = max(math.sqrt(dx * dx + dy * dy + dz * dz), r_min)

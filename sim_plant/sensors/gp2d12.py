@@ -193,19 +193,55 @@ _WEDGE_MARGIN = 1e-9  # m^2 (a cross product): an edge this close to the beam's 
 
 
 @nb.njit(cache=True)
-def _edges_in_wedge(px: float, py: float, dx0: float, dy0: float, half: float,
-                    edges: np.ndarray) -> np.ndarray:
-    """The wall edges a ray within +-``half`` (< 90 degrees) of the unit aim (dx0, dy0) from
-    (px, py) can hit: an edge is left out only when both its ends are behind the ranger, or
-    both beyond the same side of the beam (the beam is convex, so the edge cannot cross it).
-    Casting the beam's rays against these only gives the same distances, for less work."""
-    ch = math.cos(half)
-    sh = math.sin(half)
+def beam_table(half: float, n_rays: int) -> np.ndarray:
+    """The beam's rotations, computed once per suite instead of once per measurement: row 0
+    cos, sin of ``half``; row 1 + j cos, sin of ray j's offset from the aim. The same
+    expressions ``beam_distance`` evaluated per ray, so the same numbers (bit for bit).
+    ``half`` <= 0 or ``n_rays`` <= 1: one ray, the table has only row 0."""
+    n = 1 if half <= 0.0 or n_rays <= 1 else n_rays
+    tab = np.empty((n + 1, 2))
+    tab[0, 0] = math.cos(half)
+    tab[0, 1] = math.sin(half)
+    tab[1, 0] = 1.0  # one ray: no rotation (row 1 is not read)
+    tab[1, 1] = 0.0
+    if n > 1:
+        for j in range(n):
+            o = -half + 2.0 * half * j / (n - 1)
+            tab[1 + j, 0] = math.cos(o)
+            tab[1 + j, 1] = math.sin(o)
+    return tab
+
+
+def beam_table_py(half: float, n_rays: int) -> np.ndarray:
+    """``beam_table`` in plain Python, for the sensor suite: the same operations on the same
+    doubles and the same C library's cos and sin, so the same table (tested bit for bit), and
+    no compiled kernel to load at start-up (each costs ~10 ms, docs/architecture.md)."""
+    n = 1 if half <= 0.0 or n_rays <= 1 else n_rays
+    tab = np.empty((n + 1, 2))
+    tab[0, 0] = math.cos(half)
+    tab[0, 1] = math.sin(half)
+    tab[1, 0] = 1.0  # one ray: no rotation (row 1 is not read)
+    tab[1, 1] = 0.0
+    if n > 1:
+        for j in range(n):
+            o = -half + 2.0 * half * j / (n - 1)
+            tab[1 + j, 0] = math.cos(o)
+            tab[1 + j, 1] = math.sin(o)
+    return tab
+
+
+@nb.njit(cache=True)
+def _wedge_into(px: float, py: float, dx0: float, dy0: float, ch: float, sh: float,
+                edges: np.ndarray, out: np.ndarray) -> int:
+    """The wall edges a ray within +-half (< 90 degrees; ``ch``, ``sh`` its cos and sin) of
+    the unit aim (dx0, dy0) from (px, py) can hit, copied in order into ``out[:n]``; returns n.
+    An edge is left out only when both its ends are behind the ranger, or both beyond the
+    same side of the beam (the beam is convex, so the edge cannot cross it). Casting the
+    beam's rays against these only gives the same distances, for less work."""
     lx = dx0 * ch - dy0 * sh  # the beam's left (counter-clockwise) boundary
     ly = dx0 * sh + dy0 * ch
     rx = dx0 * ch + dy0 * sh  # and its right one
     ry = -dx0 * sh + dy0 * ch
-    keep = np.empty(edges.shape[0], dtype=np.int64)
     n = 0
     for i in range(edges.shape[0]):
         ax = edges[i, 0] - px
@@ -218,47 +254,45 @@ def _edges_in_wedge(px: float, py: float, dx0: float, dy0: float, half: float,
             continue
         if rx * ay - ry * ax < -_WEDGE_MARGIN and rx * by - ry * bx < -_WEDGE_MARGIN:
             continue
-        keep[n] = i
+        out[n, 0] = edges[i, 0]
+        out[n, 1] = edges[i, 1]
+        out[n, 2] = edges[i, 2]
+        out[n, 3] = edges[i, 3]
         n += 1
-    out = np.empty((n, 4))
-    for j in range(n):
-        for c in range(4):
-            out[j, c] = edges[keep[j], c]
-    return out
+    return n
 
 
 @nb.njit(cache=True)
-def beam_distance(px: float, py: float, dx0: float, dy0: float, half: float, n_rays: int,
-                  edges: np.ndarray,
-                  wall_polys: np.ndarray, max_range: float, cx: float, cy: float,
-                  obs_r: float) -> float:
-    """The distance a ranger at (px, py) aimed along unit (dx0, dy0) reports.
+def _edges_in_wedge(px: float, py: float, dx0: float, dy0: float, half: float,
+                    edges: np.ndarray) -> np.ndarray:
+    """``_wedge_into`` as a new array (tests and reports; the sensors reuse a scratch buffer)."""
+    out = np.empty((edges.shape[0], 4))
+    n = _wedge_into(px, py, dx0, dy0, math.cos(half), math.sin(half), edges, out)
+    return out[:n].copy()
 
-    ``half`` = 0 or ``n_rays`` = 1: one ray (``ir_ray_distance``). Otherwise
-    ``n_rays`` rays evenly over +-``half`` (rad) about the aim, each of equal power;
-    a ray hitting at d_j returns light ~ 1/d_j^2 (a diffuse wall, a small
-    receiving lens) whose image falls on the detector at a place ~ 1/d_j
-    (triangulation), and the detector reports the intensity-weighted centroid:
-    1/d = sum(d_j^-3) / sum(d_j^-2). A ray that hits nothing within
-    ``max_range`` returns no light (all miss: ``max_range``). With ``obs_r`` > 0
-    a disc (the candle's base) of that radius at (cx, cy) is a target too.
-    """
+
+@nb.njit(cache=True)
+def beam_distance_tab(px: float, py: float, dx0: float, dy0: float, tab: np.ndarray,
+                      edges: np.ndarray, wall_polys: np.ndarray, scratch: np.ndarray,
+                      max_range: float, cx: float, cy: float, obs_r: float) -> float:
+    """``beam_distance`` with the beam's rotations from ``beam_table`` (tab.shape[0] - 1 rays)
+    and the edges inside the wedge collected into ``scratch`` (at least edges' shape): what
+    the sensors call per measurement, with no trigonometry of the beam and no allocation."""
     for w in range(wall_polys.shape[0]):
         if point_in_convex(px, py, wall_polys[w]):
             return 0.0
-    if half <= 0.0 or n_rays <= 1:
-        n_rays = 1
-    else:
-        edges = _edges_in_wedge(px, py, dx0, dy0, half, edges)
+    n_rays = tab.shape[0] - 1
+    if n_rays > 1:
+        m = _wedge_into(px, py, dx0, dy0, tab[0, 0], tab[0, 1], edges, scratch)
+        edges = scratch[:m]
     num = 0.0
     den = 0.0
     for j in range(n_rays):
         dx = dx0
         dy = dy0
         if n_rays > 1:
-            o = -half + 2.0 * half * j / (n_rays - 1)
-            co = math.cos(o)
-            so = math.sin(o)
+            co = tab[1 + j, 0]
+            so = tab[1 + j, 1]
             dx = dx0 * co - dy0 * so
             dy = dx0 * so + dy0 * co
         d = ray_cast(px, py, dx, dy, edges, max_range)
@@ -276,3 +310,24 @@ def beam_distance(px: float, py: float, dx0: float, dy0: float, half: float, n_r
     if den == 0.0:
         return max_range
     return den / num
+
+
+@nb.njit(cache=True)
+def beam_distance(px: float, py: float, dx0: float, dy0: float, half: float, n_rays: int,
+                  edges: np.ndarray,
+                  wall_polys: np.ndarray, max_range: float, cx: float, cy: float,
+                  obs_r: float) -> float:
+    """The distance a ranger at (px, py) aimed along unit (dx0, dy0) reports.
+
+    ``half`` = 0 or ``n_rays`` = 1: one ray (``ir_ray_distance``). Otherwise
+    ``n_rays`` rays evenly over +-``half`` (rad) about the aim, each of equal power;
+    a ray hitting at d_j returns light ~ 1/d_j^2 (a diffuse wall, a small
+    receiving lens) whose image falls on the detector at a place ~ 1/d_j
+    (triangulation), and the detector reports the intensity-weighted centroid:
+    1/d = sum(d_j^-3) / sum(d_j^-2). A ray that hits nothing within
+    ``max_range`` returns no light (all miss: ``max_range``). With ``obs_r`` > 0
+    a disc (the candle's base) of that radius at (cx, cy) is a target too.
+    (The sensor suite calls ``beam_distance_tab`` with the table and scratch made once.)
+    """
+    return beam_distance_tab(px, py, dx0, dy0, beam_table(half, n_rays), edges, wall_polys,
+                             np.empty((edges.shape[0], 4)), max_range, cx, cy, obs_r)

@@ -17,6 +17,7 @@ import numpy as np
 
 from sim_plant.arena import Arena
 from sim_plant.candle import Candle
+from sim_plant.geometry import edges_soa
 from sim_plant.robot import IR_NAMES, RobotParams
 from sim_plant.sensors.channels import (
     CH_ENC_L,
@@ -28,8 +29,20 @@ from sim_plant.sensors.channels import (
     N_CHANNELS,
 )
 from sim_plant.sensors.encoders import encoder_counts
-from sim_plant.sensors.flame_sensor import FlameModel, flame_sensor_fc, point_fc, reflected_fc
-from sim_plant.sensors.gp2d12 import IR_MV_MAX, Gp2d12Model, beam_distance, mv_of_distance
+from sim_plant.sensors.flame_sensor import (
+    FlameModel,
+    edge_normals,
+    flame_sensor_fc,
+    point_fc,
+    reflected_fc_tab,
+)
+from sim_plant.sensors.gp2d12 import (
+    IR_MV_MAX,
+    Gp2d12Model,
+    beam_distance_tab,
+    beam_table_py,
+    mv_of_distance,
+)
 from sim_plant.sensors.line_sensor import door_segments, white_fraction
 from sim_plant.sensors.models import FLICKER_RATIO, draw_flame, draw_ranger_timing
 from sim_plant.sensors.noise import (
@@ -77,7 +90,9 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
                    lit: bool, out: np.ndarray, ir_cfg: np.ndarray, ir_state: np.ndarray,
                    cfg: np.ndarray, st: np.ndarray, edges: np.ndarray, wall_polys: np.ndarray,
                    doors: np.ndarray, npar: np.ndarray, normals: np.ndarray,
-                   uniforms: np.ndarray, npos: np.ndarray, srcs: np.ndarray) -> bool:
+                   uniforms: np.ndarray, npos: np.ndarray, srcs: np.ndarray,
+                   beam: np.ndarray, scratch: np.ndarray, enorm: np.ndarray,
+                   esoa: np.ndarray) -> bool:
     c = math.cos(theta)
     s = math.sin(theta)
     first = st[S_INIT] == 0.0
@@ -101,9 +116,9 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
             sa = ir_cfg[i, _SA]
             px = x + c * bx - s * by
             py = y + s * bx + c * by
-            d = beam_distance(px, py, c * ca - s * sa, s * ca + c * sa, cfg[C_BEAM_HALF],
-                              int(cfg[C_BEAM_N]), edges, wall_polys, cfg[C_MAX_RANGE],
-                              cfg[C_CX], cfg[C_CY], cfg[C_OBS_R])
+            d = beam_distance_tab(px, py, c * ca - s * sa, s * ca + c * sa, beam, edges,
+                                  wall_polys, scratch, cfg[C_MAX_RANGE], cfg[C_CX], cfg[C_CY],
+                                  cfg[C_OBS_R])
             mv = mv_of_distance(d)
             ir_state[i, _DIST] = d
             ir_state[i, _CLEAN] = mv
@@ -144,14 +159,15 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
         if scale > 0.0:
             fc = flame_sensor_fc(x, y, c, s, cfg[C_FX], side * cfg[C_FY], cfg[C_FZ],
                                  side * cfg[C_AIM], theta, cfg[C_CX], cfg[C_CY], cfg[C_CZ],
-                                 edges, cfg[C_HALF], cfg[C_RMIN])
+                                 esoa, cfg[C_HALF], cfg[C_RMIN])
             if cfg[C_REFL] > 0.0:
                 by = side * cfg[C_FY]
                 px = x + c * cfg[C_FX] - s * by
                 py = y + s * cfg[C_FX] + c * by
-                fc += cfg[C_REFL] * reflected_fc(px, py, cfg[C_FZ], theta + side * cfg[C_AIM],
-                                                 cfg[C_CX], cfg[C_CY], cfg[C_CZ], edges,
-                                                 cfg[C_HALF], cfg[C_RMIN])
+                fc += cfg[C_REFL] * reflected_fc_tab(px, py, cfg[C_FZ],
+                                                     theta + side * cfg[C_AIM], cfg[C_CX],
+                                                     cfg[C_CY], cfg[C_CZ], esoa, enorm,
+                                                     cfg[C_HALF], cfg[C_RMIN])
             fc = scale * fc
         if srcs.shape[0] > 0:
             by = side * cfg[C_FY]
@@ -159,7 +175,7 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
             py = y + s * cfg[C_FX] + c * by
             for q in range(srcs.shape[0]):
                 fc += srcs[q, 3] * point_fc(px, py, cfg[C_FZ], theta + side * cfg[C_AIM],
-                                            srcs[q, 0], srcs[q, 1], srcs[q, 2], edges,
+                                            srcs[q, 0], srcs[q, 1], srcs[q, 2], esoa,
                                             cfg[C_HALF], cfg[C_RMIN])
         st[S_FC_L + j] = fc
         v = cfg[C_GAIN] * fc + cfg[C_DARK]
@@ -292,9 +308,13 @@ class SensorSuite:
         if srcs.ndim != 2 or srcs.shape[1] != 4:
             raise ValueError(f"ir_sources must be (n, 4): x, y, z, strength; got {srcs.shape}")
         self._srcs = np.ascontiguousarray(srcs)
+        # the beam's rotations once (gp2d12.beam_table_py), and the scratch its wedge filter fills
+        self._beam = beam_table_py(float(cfg[C_BEAM_HALF]), int(cfg[C_BEAM_N]))
         self._args = (self._ir_cfg, self._ir_state, cfg, self._st, arena.wall_edges,
                       arena.wall_polys, door_segments(arena), self.noise.packed(),
-                      self._stream.normals, self._stream.uniforms, self._stream.pos, self._srcs)
+                      self._stream.normals, self._stream.uniforms, self._stream.pos, self._srcs,
+                      self._beam, np.empty((arena.wall_edges.shape[0], 4)),
+                      edge_normals(arena.wall_edges), edges_soa(arena.wall_edges))
         self._checked_out: np.ndarray | None = None
 
     def sample(self, t: float, x: float, y: float, theta: float, phi_l: float, phi_r: float,

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from sim_plant.candle import Candle
+from sim_plant.geometry import edges_soa
 from sim_plant.sensors import CH_FLAME_L, CH_FLAME_R, FlameModel, SensorSuite, new_output
 from sim_plant.sensors.flame_sensor import flame_intensity, flame_k, flame_sensor_fc
 
@@ -42,11 +43,11 @@ def test_sensor_geometry_without_walls():
     # Sensor at body (0.05, 0.03, 0.18) aimed +12°, robot at the origin facing +x,
     # flame 0.5 m straight ahead of the sensor's position at the same height.
     fc = flame_sensor_fc(0.0, 0.0, 1.0, 0.0, 0.05, 0.03, 0.18, math.radians(12.0), 0.0,
-                         0.55, 0.03, 0.18, NO_WALLS, HALF, 0.02)
+                         0.55, 0.03, 0.18, edges_soa(NO_WALLS), HALF, 0.02)
     assert fc == pytest.approx(0.0125 * k_expected(12.0) / 0.25)
     # Rotating the robot by 90° and the flame with it gives the same light.
     fc_rot = flame_sensor_fc(0.0, 0.0, 0.0, 1.0, 0.05, 0.03, 0.18, math.radians(12.0),
-                             math.pi / 2, -0.03, 0.55, 0.18, NO_WALLS, HALF, 0.02)
+                             math.pi / 2, -0.03, 0.55, 0.18, edges_soa(NO_WALLS), HALF, 0.02)
     assert fc_rot == pytest.approx(fc)
 
 
@@ -85,7 +86,7 @@ def test_wall_between_gives_dark_level(arena, robot):
     assert out[CH_FLAME_L] == dark and out[CH_FLAME_R] == dark
     # The same geometry with no walls would see it.
     fc = flame_sensor_fc(cx, 1.20, 0.0, -1.0, 0.05, 0.03, 0.18, math.radians(12.0), -math.pi / 2,
-                         cx, cy, arena.flame_height, NO_WALLS, HALF, 0.02)
+                         cx, cy, arena.flame_height, edges_soa(NO_WALLS), HALF, 0.02)
     assert FlameModel().gain * fc > 50
 
 

@@ -13,6 +13,7 @@ import pytest
 
 from sim_plant.arena import Arena, load_arena
 from sim_plant.candle import Candle
+from sim_plant.geometry import edges_soa
 from sim_plant.robot import IR_NAMES, load_robot
 from sim_plant.sensors import NoiseProfile, SensorSuite, new_output
 from sim_plant.sensors.flame_sensor import INTENSITY_COEFF, flame_k, point_fc, reflected_fc
@@ -246,7 +247,8 @@ def test_image_source_reflection_hand_calculation() -> None:
     assert reflected_fc(0.0, 0.2, 0.18, aim, 0.4, 0.1, 0.18, blocked, math.radians(60), 0.02) == 0.0
     # the direct light of the same source, for the same sensor: K(dθ) / r^2
     d_aim = math.atan2(-0.1, 0.4)
-    assert point_fc(0.0, 0.2, 0.18, d_aim, 0.4, 0.1, 0.18, edges, math.radians(60), 0.02) == \
+    assert point_fc(0.0, 0.2, 0.18, d_aim, 0.4, 0.1, 0.18, edges_soa(edges), math.radians(60),
+                    0.02) == \
         pytest.approx(INTENSITY_COEFF * flame_k(0.0, math.radians(60)) / 0.17)
 
 
@@ -377,3 +379,91 @@ def test_beam_edge_filter_changes_no_distance(arena: Arena, seed: int) -> None:
             dx, dy = math.cos(a) * math.cos(o) - math.sin(a) * math.sin(o), \
                 math.cos(a) * math.sin(o) + math.sin(a) * math.cos(o)
             assert ray_cast(px, py, dx, dy, sub, 4.0) == ray_cast(px, py, dx, dy, e, 4.0)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_beam_table_in_python_is_the_compiled_one_bit_for_bit(seed: int) -> None:
+    """The suite builds the beam's rotations in Python (no kernel to load at start-up); they must
+    be the very doubles the compiled ``beam_table`` (the per-ray expressions) gives, over the
+    whole range of half-angles and ray counts, the one-ray cases included."""
+    from sim_plant.sensors.gp2d12 import beam_table, beam_table_py
+    rng = np.random.default_rng(seed)
+    halves = [0.0, -0.1, *np.radians(rng.uniform(0.0, 45.0, 60))]
+    for h in halves:
+        for n in range(0, 12):
+            py, nb_ = beam_table_py(float(h), n), beam_table(float(h), n)
+            assert py.shape == nb_.shape == ((n if h > 0.0 and n > 1 else 1) + 1, 2)
+            assert py.tobytes() == nb_.tobytes()
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_beam_with_reused_scratch_is_the_fresh_beam(arena: Arena, seed: int) -> None:
+    """The sensors keep one scratch buffer for the wedge's edges across measurements: a buffer
+    left full by earlier measurements must change no distance (random poses, aims, beams, with
+    and without the candle's base as a target)."""
+    from sim_plant.sensors.gp2d12 import beam_distance_tab, beam_table_py
+    rng = np.random.default_rng(seed)
+    e, polys = arena.wall_edges, arena.wall_polys
+    scratch = np.empty((e.shape[0], 4))
+    for _ in range(300):
+        px, py = rng.uniform(0.03, 2.41, 2)
+        a = rng.uniform(-math.pi, math.pi)
+        h = math.radians(rng.uniform(0.0, 20.0))
+        n = int(rng.integers(1, 9))
+        obs = float(rng.choice([0.0, 0.04]))
+        cx, cy = rng.uniform(0.3, 2.1, 2)
+        got = beam_distance_tab(px, py, math.cos(a), math.sin(a), beam_table_py(h, n), e, polys,
+                                scratch, 4.0, cx, cy, obs)
+        want = beam_distance(px, py, math.cos(a), math.sin(a), h, n, e, polys, 4.0, cx, cy, obs)
+        assert got == want
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_reflections_with_edge_table_are_the_reference(arena: Arena, seed: int) -> None:
+    """The suite reads each edge's length and normal from a table made once (edge_normals):
+    every reflected light must be the very double ``reflected_fc`` computes (random sensor and
+    source positions, heights and aims over the whole arena, in the arena with furniture too)."""
+    from sim_plant.furniture import draw_furniture, furnish
+    from sim_plant.sensors.flame_sensor import edge_normals, reflected_fc_tab
+    rng = np.random.default_rng(seed)
+    pieces = draw_furniture(arena, 3, arena.room(2).default_candle, np.random.default_rng(seed))
+    arenas = [arena, furnish(arena, pieces)]
+    assert arenas[1].wall_edges.shape[0] > arena.wall_edges.shape[0]
+    for ar in arenas:
+        e = ar.wall_edges
+        en = edge_normals(e)
+        soa = edges_soa(e)
+        for _ in range(300):
+            px, py, sx, sy = rng.uniform(0.03, 2.41, 4)
+            pz, sz = rng.uniform(0.05, 0.3, 2)
+            aim = rng.uniform(-math.pi, math.pi)
+            half = math.radians(rng.uniform(20.0, 90.0))
+            want = reflected_fc(px, py, pz, aim, sx, sy, sz, e, half, 0.02)
+            assert reflected_fc_tab(px, py, pz, aim, sx, sy, sz, soa, en, half, 0.02) == want
+
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_branch_free_line_of_sight_is_segment_blocked(arena: Arena, seed: int) -> None:
+    """``segment_blocked_soa`` (the flame sensors' line of sight) must answer as
+    ``segment_blocked`` for any segment: random ones over the arena (furniture too), segments
+    along a wall face, from a wall's corner, of zero length, and parallel to a wall."""
+    from sim_plant.furniture import draw_furniture, furnish
+    from sim_plant.geometry import segment_blocked, segment_blocked_soa
+    rng = np.random.default_rng(seed)
+    pieces = draw_furniture(arena, 3, arena.room(3).default_candle, np.random.default_rng(seed))
+    for ar in (arena, furnish(arena, pieces)):
+        e = ar.wall_edges
+        soa = edges_soa(e)
+        segs = [tuple(rng.uniform(0.0, 2.44, 4)) for _ in range(2000)]
+        for i in rng.integers(0, e.shape[0], 200):
+            x1, y1, x2, y2 = e[i]
+            segs += [(x1, y1, x2, y2), (x1, y1, x1 + (x2 - x1) * 0.5, y1 + (y2 - y1) * 0.5),
+                     (x1, y1, x1, y1), (x1 + 0.01, y1, x2 + 0.01, y2),
+                     (x1, y1, *rng.uniform(0.0, 2.44, 2))]
+        hits = 0
+        for s in segs:
+            want = segment_blocked(*s, e)
+            hits += want
+            assert segment_blocked_soa(*s, soa) == want, s
+        assert 0 < hits < len(segs)
