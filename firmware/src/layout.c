@@ -11,6 +11,7 @@
  */
 #include <stddef.h>
 
+#include "ffr_contract_hash.h"
 #include "ffr_internal.h"
 
 /* ffr_step_t: one route step (our sub-struct FFR_S_ROUTE_STEP). S = scalar row. */
@@ -141,65 +142,5 @@ const char *const *ffr_names(uint32_t kind, uint32_t *count)
     return t;
 }
 
-static uint32_t fnv(uint32_t h, uint32_t v, int bytes)
-{
-    int i;
-    for (i = 0; i < bytes; ++i) {
-        h ^= (v >> (8 * i)) & 0xFFu;
-        h *= 16777619u;
-    }
-    return h;
-}
-
-static uint32_t fnv_str(uint32_t h, const char *s)
-{
-    for (; *s != '\0'; ++s) {
-        h = fnv(h, (uint32_t)(uint8_t)*s, 1);
-    }
-    return fnv(h, 0u, 1); /* the terminator: "ab","c" differs from "a","bc" */
-}
-
-/* The contract's hash (docs/contract.md, "Layout hash"): FNV-1a, 32 bits, over
- * 1. every layout row: name bytes, then struct id, type, offset, count (2 bytes each, LE);
- * 2. ffr_sizeof of inputs, outputs, config and of every sub-struct a row names (4 bytes each);
- * 3. every name table of kind 0..255 that has names: kind, count (2 bytes each), each name and a 0 byte;
- * 4. the firmware's name and a 0 byte. */
-uint32_t ffr_layout_hash(void)
-{
-    uint32_t h = 2166136261u;
-    uint32_t n;
-    uint32_t i;
-    uint32_t kind;
-    const ffr_field_t *f = ffr_layout(&n);
-    for (i = 0; i < n; ++i) {
-        const char *c;
-        for (c = f[i].name; *c != '\0'; ++c) {
-            h = fnv(h, (uint32_t)(uint8_t)*c, 1);
-        }
-        h = fnv(h, f[i].struct_id, 2);
-        h = fnv(h, f[i].type, 2);
-        h = fnv(h, f[i].offset, 2);
-        h = fnv(h, f[i].count, 2);
-    }
-    for (i = 0; i < 3u; ++i) {
-        h = fnv(h, ffr_sizeof(i), 4);
-    }
-    for (i = 0; i < n; ++i) {
-        if (FFR_T_BASE(f[i].type) == FFR_T_STRUCT) {
-            h = fnv(h, ffr_sizeof(FFR_T_SUBSTRUCT(f[i].type)), 4);
-        }
-    }
-    for (kind = 0u; kind < 256u; ++kind) {
-        uint32_t count = 0u;
-        const char *const *names = ffr_names(kind, &count);
-        if (names == NULL || count == 0u) {
-            continue;
-        }
-        h = fnv(h, kind, 2);
-        h = fnv(h, count, 2);
-        for (i = 0; i < count; ++i) {
-            h = fnv_str(h, names[i]);
-        }
-    }
-    return fnv_str(h, ffr_firmware_name());
-}
+/* The contract's recipe (ffr_contract_hash.h, docs/contract.md). */
+uint32_t ffr_layout_hash(void) { return ffr_contract_hash(); }
