@@ -221,7 +221,9 @@ def _list_firmware_config(args: argparse.Namespace) -> int:
     from harness.firmware_config import describe_fields
 
     fw = firmware_info(library_of_link(args.link))
-    print(f"# {fw.firmware_name}: config fields (--set firmware.NAME=V; name, type[count], kind, default)")
+    print(f"# {fw.firmware_name} (contract {fw.version >> 16}.{fw.version & 0xFFFF}): inputs {fw.sizes[0]} bytes, "
+          f"outputs {fw.sizes[1]}, config {fw.sizes[2]}, state {fw.sizes[99]}; layout hash 0x{fw.layout_hash:08x}")
+    print("# config fields (--set firmware.NAME=V): name, type[count], kind, default (ffr_config_default)")
     for line in describe_fields(fw):
         print(line)
     return EXIT_OK

@@ -112,8 +112,9 @@ def test_unknown_config_name_is_one_line_and_exit_2(tiny: str, capsys: pytest.Ca
 def test_list_firmware_config_lists_its_fields(tiny: str, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["run", "--firmware", tiny, "--list-firmware-config"]) == 0
     out = capsys.readouterr().out.splitlines()
-    assert out[0].startswith("# tiny 0.1")
-    rows = {ln.split()[0]: ln.split()[1:] for ln in out[1:]}
+    assert out[0].startswith("# tiny 0.1 (contract 2.0): inputs 32 bytes, outputs 24, config 48, state ")
+    assert out[0].endswith(f"layout hash 0x{firmware_info(tiny).layout_hash:08x}")
+    rows = {ln.split()[0]: ln.split()[1:] for ln in out[2:]}
     assert rows["run_ms"] == ["u2", "unsigned", "500"] and rows["speed_permille"] == ["i2", "integer", "150"]
     assert rows["ir_x_mm"][0] == "f4[5]" and "legs" not in rows
 
