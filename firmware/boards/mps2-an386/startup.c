@@ -31,7 +31,8 @@ __attribute__((section(".vectors"), used)) static const vector_table_t vectors =
     &_estack,
     {reset_handler, default_handler, default_handler, default_handler, default_handler, default_handler, 0, 0, 0,
      0, default_handler, default_handler, 0, default_handler, systick_handler},
-    {uart0_rx_handler}, /* IRQ 0: UART0 receive; the others are never enabled */
+    /* IRQ 0: UART0 receive; IRQ 13: Ethernet; the others are never enabled */
+    {uart0_rx_handler, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, eth_irq_handler},
 };
 
 void reset_handler(void)
@@ -69,9 +70,10 @@ uint32_t board_millis(void) { return g_ms; }
 void board_idle(void)
 {
     /* masked, test, sleep: an interrupt that arrives after the test still
-     * wakes the wfi, and is taken once unmasked */
+     * wakes the wfi, and is taken once unmasked (the Ethernet's wake-up is
+     * armed here, masked: eth_lan9118.c) */
     __asm__ volatile("cpsid i" ::: "memory");
-    if (uart_rx_empty()) {
+    if (uart_rx_empty() && eth_idle_arm() != 0u) {
         __asm__ volatile("wfi");
     }
     __asm__ volatile("cpsie i" ::: "memory");
