@@ -12,8 +12,9 @@ typedef struct {
     ffr_deframer_t rx;
     uint8_t msg[FFR_MSG_MAX + 2u];
     uint8_t reply[FFR_MSG_MAX];
+    /* the frame going out; also a frame transport's datagram coming in, which is decoded into
+     * msg before the reply is framed here */
     uint8_t frame[FFR_FRAME_MAX];
-    uint8_t dgram[FFR_FRAME_MAX]; /* a frame transport's datagram */
 } board_t;
 
 static board_t g_board; /* the board's RAM */
@@ -50,14 +51,14 @@ static size_t on_frame(board_t *b, int got, const uint8_t *f, size_t flen)
 static size_t on_datagram(board_t *b, uint32_t n)
 {
     uint32_t end = 0u;
-    while (end < n && b->dgram[end] != 0u) {
+    while (end < n && b->frame[end] != 0u) {
         ++end;
     }
     if (end == 0u || end == n) {
         return ffr_board_link_on_bad_frame(&b->link, end == 0u ? FFR_E_SHORT : FFR_E_COBS, b->reply,
                                            sizeof(b->reply));
     }
-    return on_frame(b, 1, b->dgram, end);
+    return on_frame(b, 1, b->frame, end);
 }
 
 static char *put_str(char *p, const char *s)
@@ -124,7 +125,7 @@ void board_loop_run(const board_loop_hooks_t *hooks)
                 send(b, on_frame(b, got, f, flen), via);
             }
         }
-        while (hooks->frame_recv != 0 && (n = hooks->frame_recv(b->dgram, sizeof(b->dgram))) > 0u) {
+        while (hooks->frame_recv != 0 && (n = hooks->frame_recv(b->frame, sizeof(b->frame))) > 0u) {
             via = hooks->frame_send;
             send(b, on_datagram(b, n), via);
         }
