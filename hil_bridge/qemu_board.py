@@ -5,7 +5,13 @@ Cortex-M4F) and ``qemu:microbit`` (nRF51822, Cortex-M0, soft float) start
 ``qemu-system-arm -M <machine>`` with the board image
 (``build/arm/<machine>-board.elf``: firmware, codec and board link behind
 the board's UART), connect the serial link to that UART through a loopback
-socket, and run the mission exactly as over a real serial port.
+socket, and run the mission exactly as over a real serial port. The
+mps2-an386 also has an Ethernet controller, its default transport
+(``#transport=eth``; ``#transport=uart`` for the UART): one link frame per
+Ethernet frame, carried by QEMU's ``-netdev dgram`` as one datagram on a
+local socket (``hil_bridge/datagram_link.py``): several times faster a
+tick than the UART, whose model hands over one byte at a time (make bench
+prints both; docs/pil.md, "Speed").
 
 QEMU runs with ``-icount shift=0``: every guest instruction is one
 nanosecond of virtual time, so the board's free-running timer readings
