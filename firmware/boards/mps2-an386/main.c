@@ -9,7 +9,7 @@
  * UART1 carries a profile of ffr_step: timer 0 counts read around every
  * step. Under QEMU with -icount shift=0 each instruction is 1 ns of virtual
  * time and the timer counts the 25 MHz clock, so one count is 40 instructions.
- * (The watchdog's milliseconds come from SysTick's interrupt, in virtual
+ * (The watchdog's milliseconds come from SysTick, every 10 ms, in virtual
  * time too: sleeping advances it with the host clock.)
  */
 #include "board.h"
