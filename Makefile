@@ -121,7 +121,7 @@ $(BUILD)/arm/mps2-an386-selftest.elf: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) $(MP
 	$(ARM_CC) $(ARM_CFLAGS) -I$(MPS2_DIR) -Ifirmware/boards/common $(MPS2_LDFLAGS) -o $@ \
 		$(FW_SRCS) $(BOARD_COMMON) $(MPS2_SRCS) $(MPS2_DIR)/selftest_main.c
 
-# The board itself: firmware + codec + board link behind UART0 (--link qemu:mps2-an386).
+# The board itself: firmware + codec + board link behind its Ethernet or UART0 (--link qemu:mps2-an386).
 $(BUILD)/arm/mps2-an386-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(BOARD_LOOP) $(MPS2_SRCS) $(MPS2_DIR)/main.c $(MPS2_DIR)/*.h $(MPS2_DIR)/*.ld Makefile
 	@mkdir -p $(dir $@)
 	$(ARM_CC) $(ARM_CFLAGS) -I$(MPS2_DIR) -Ifirmware/boards/common $(MPS2_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) \
