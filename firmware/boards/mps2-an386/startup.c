@@ -75,17 +75,28 @@ void board_clock_init(void)
     SYST_CSR = 7u; /* processor clock, interrupt, enable */
 }
 
-/* periods * TICK_MS + the counts gone in this period. The count and the period must belong
- * together: a reload between the two reads is taken at once (never called masked), so the
- * period count has moved, and the reads are repeated. */
+/* the last value board_millis returned (main loop only: the only caller) */
+static uint32_t g_last_ms;
+
+/* periods * TICK_MS + the counts gone in this period. The count and the period belong
+ * together unless the counter has reloaded while its interrupt is not yet taken (an emulator
+ * runs its timer callbacks between blocks of instructions): then the sum is up to one period
+ * behind, or ahead. So the reads are repeated while the period count moves under them, and
+ * the result never goes back: a clock that stepped back would make the link watchdog see an
+ * age of four billion milliseconds (seen once in a UART mission, a WATCHDOG report). Ahead by
+ * up to 10 ms, it waits until the true time catches up. */
 uint32_t board_millis(void)
 {
-    uint32_t ticks, left;
+    uint32_t ticks, left, now;
     do {
         ticks = g_ticks;
         left = SYST_CVR;
     } while (ticks != g_ticks);
-    return ticks * TICK_MS + (SYST_RVR - left) / COUNTS_PER_MS;
+    now = ticks * TICK_MS + (SYST_RVR - left) / COUNTS_PER_MS;
+    if ((int32_t)(now - g_last_ms) > 0) {
+        g_last_ms = now;
+    }
+    return g_last_ms;
 }
 
 void board_idle(void)
