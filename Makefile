@@ -113,7 +113,7 @@ BOARD_COMMON := firmware/boards/common/selftest.c
 MPS2_DIR := firmware/boards/mps2-an386
 # every microcontroller board's main loop (board link behind the UART)
 BOARD_LOOP := firmware/boards/common/board_loop.c
-MPS2_SRCS := $(MPS2_DIR)/startup.c $(MPS2_DIR)/uart_cmsdk.c
+MPS2_SRCS := $(MPS2_DIR)/startup.c $(MPS2_DIR)/uart_cmsdk.c $(MPS2_DIR)/eth_lan9118.c
 MPS2_LDFLAGS := -T $(MPS2_DIR)/mps2_an386.ld -nostartfiles -Wl,--gc-sections --specs=nano.specs --specs=nosys.specs
 
 $(BUILD)/arm/mps2-an386-selftest.elf: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) $(MPS2_SRCS) $(MPS2_DIR)/selftest_main.c $(MPS2_DIR)/*.h $(MPS2_DIR)/*.ld Makefile
@@ -121,7 +121,7 @@ $(BUILD)/arm/mps2-an386-selftest.elf: $(FW_SRCS) $(FW_HDRS) $(BOARD_COMMON) $(MP
 	$(ARM_CC) $(ARM_CFLAGS) -I$(MPS2_DIR) -Ifirmware/boards/common $(MPS2_LDFLAGS) -o $@ \
 		$(FW_SRCS) $(BOARD_COMMON) $(MPS2_SRCS) $(MPS2_DIR)/selftest_main.c
 
-# The board itself: firmware + codec + board link behind UART0 (--link qemu:mps2-an386).
+# The board itself: firmware + codec + board link behind its Ethernet or UART0 (--link qemu:mps2-an386).
 $(BUILD)/arm/mps2-an386-board.elf: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) $(BOARD_LOOP) $(MPS2_SRCS) $(MPS2_DIR)/main.c $(MPS2_DIR)/*.h $(MPS2_DIR)/*.ld Makefile
 	@mkdir -p $(dir $@)
 	$(ARM_CC) $(ARM_CFLAGS) -I$(MPS2_DIR) -Ifirmware/boards/common $(MPS2_LDFLAGS) -o $@ $(FW_SRCS) $(WIRE_SRCS) \

@@ -5,7 +5,13 @@ Cortex-M4F) and ``qemu:microbit`` (nRF51822, Cortex-M0, soft float) start
 ``qemu-system-arm -M <machine>`` with the board image
 (``build/arm/<machine>-board.elf``: firmware, codec and board link behind
 the board's UART), connect the serial link to that UART through a loopback
-socket, and run the mission exactly as over a real serial port.
+socket, and run the mission exactly as over a real serial port. The
+mps2-an386 also has an Ethernet controller, its default transport
+(``#transport=eth``; ``#transport=uart`` for the UART): one link frame per
+Ethernet frame, carried by QEMU's ``-netdev dgram`` as one datagram on a
+local socket (``hil_bridge/datagram_link.py``): several times faster a
+tick than the UART, whose model hands over one byte at a time (make bench
+prints both; docs/pil.md, "Speed").
 
 QEMU runs with ``-icount shift=0``: every guest instruction is one
 nanosecond of virtual time, so the board's free-running timer readings
@@ -34,6 +40,7 @@ from pathlib import Path
 
 from ffr_link.base import LinkError
 from hil_bridge.child_process import describe_exit, stop_process
+from hil_bridge.datagram_link import DatagramLink
 from hil_bridge.options import WireOptions, parse_url, simulated_board
 from hil_bridge.serial_link import SerialLink
 
@@ -50,6 +57,9 @@ class Machine:
     profile_on: str  # "serial1": the board's second UART; "semihosting": SYS_WRITE0
     cpu_hz: int  # the real chip's clock (make bench: the load at that clock)
     cycles_per_insn: float  # assumed for the load estimate
+    # the link's transports, the default first: "uart" (the board's UART on a loopback TCP
+    # socket), "eth" (its Ethernet controller, one frame a datagram: hil_bridge/datagram_link.py)
+    transports: tuple[str, ...] = ("uart",)
 
 
 def _elf(name: str) -> Path:
@@ -58,7 +68,8 @@ def _elf(name: str) -> Path:
 
 MACHINES = {
     # CMSDK timer 0 on the 25 MHz clock: 40 ns, 40 instructions a count
-    "mps2-an386": Machine(_elf("mps2-an386"), 40.0, "serial1", 25_000_000, 1.25),
+    # its LAN9118 Ethernet is the default link (docs/pil.md, "Speed"), #transport=uart the UART
+    "mps2-an386": Machine(_elf("mps2-an386"), 40.0, "serial1", 25_000_000, 1.25, ("eth", "uart")),
     # TIM2, PSC 0: QEMU clocks the STM32F2xx/F4xx timers at 1 GHz, one instruction a count
     "netduinoplus2": Machine(_elf("netduinoplus2"), 1.0, "serial1", 168_000_000, 1.25),
     # TIMER0 at 16 MHz: 62.5 ns, 62.5 instructions a count; one UART, so the profile goes by semihosting
@@ -86,9 +97,10 @@ def _free_port() -> int:
 
 
 class QemuBoard:
-    """qemu-system-arm running a board image, its UART0 on a loopback socket."""
+    """qemu-system-arm running a board image, the link on its UART0 (a loopback TCP socket) or
+    its Ethernet (datagrams on a local socket: ``eth_sock`` is QEMU's end, ``host_sock`` ours)."""
 
-    def __init__(self, machine: str, spec: Machine, log: str = "") -> None:
+    def __init__(self, machine: str, spec: Machine, log: str = "", transport: str = "uart") -> None:
         elf = spec.elf
         qemu = shutil.which("qemu-system-arm")
         if qemu is None:
@@ -97,14 +109,24 @@ class QemuBoard:
             raise LinkError(f"qemu:{machine}: board image {elf} not found: build it with `make firmware-boards`")
         self.machine = machine
         self.spec = spec
-        self.port = _free_port()
+        self.transport = transport
         self.tmp = Path(tempfile.mkdtemp(prefix="ffr-qemu-"))
         self.profile_path = self.tmp / "profile.log"
+        self.eth_sock, self.host_sock = self.tmp / "board.sock", self.tmp / "host.sock"
         self._log = open(log, "ab") if log else None  # noqa: SIM115 - closed in stop()
         cmd = [qemu, "-M", machine, "-nographic", "-monitor", "none", "-icount", "shift=0",
-               "-kernel", str(elf),
-               "-chardev", f"socket,id=link,host=127.0.0.1,port={self.port},server=on,wait=on,nodelay=on",
-               "-serial", "chardev:link"]
+               "-kernel", str(elf)]
+        if transport == "eth":
+            # every Ethernet frame the board sends is one datagram to host_sock, and back
+            self.port = 0
+            cmd += ["-netdev", f"dgram,id=eth,local.type=unix,local.path={self.eth_sock},"
+                               f"remote.type=unix,remote.path={self.host_sock}",
+                    "-net", "nic,netdev=eth,model=lan9118", "-serial", "null"]
+        else:
+            self.port = _free_port()
+            cmd += ["-nic", "none",
+                    "-chardev", f"socket,id=link,host=127.0.0.1,port={self.port},server=on,wait=on,nodelay=on",
+                    "-serial", "chardev:link"]
         if spec.profile_on == "semihosting":
             cmd += ["-chardev", f"file,id=prof,path={self.profile_path}",
                     "-semihosting-config", "enable=on,target=native,chardev=prof"]
@@ -146,6 +168,19 @@ class QemuBoard:
         shutil.rmtree(self.tmp, ignore_errors=True)
 
 
+def _wait_ready(link: QemuLink | QemuEthLink, board: QemuBoard, opts: WireOptions) -> None:
+    """QEMU starts the guest (over the UART: once the socket is connected); the first frame waits
+    until the board says its link listens (the STM32 USART model drops bytes that arrive before)."""
+    deadline = time.monotonic() + opts.handshake_timeout_s
+    while not board.ready():
+        gone = board.gone()
+        if gone or time.monotonic() > deadline:
+            link.close()
+            why = gone or f"no ready line within {opts.handshake_timeout_s:g} s"
+            raise LinkError(f"qemu:{board.machine}: {why}")
+        time.sleep(0.005)
+
+
 class QemuLink(SerialLink):
     """The serial link to the firmware on an emulated board it started and will stop."""
 
@@ -162,16 +197,7 @@ class QemuLink(SerialLink):
                 if gone or time.monotonic() > deadline:
                     raise LinkError(f"qemu:{board.machine}: {gone or 'no UART socket within 10 s'}") from None
                 time.sleep(0.02)
-        # QEMU starts the guest once the socket is connected; the first frame waits until the
-        # board says its UART listens (the STM32 USART model drops bytes that arrive before)
-        deadline = time.monotonic() + opts.handshake_timeout_s
-        while not board.ready():
-            gone = board.gone()
-            if gone or time.monotonic() > deadline:
-                self.close()
-                why = gone or f"no ready line within {opts.handshake_timeout_s:g} s"
-                raise LinkError(f"qemu:{board.machine}: {why}")
-            time.sleep(0.005)
+        _wait_ready(self, board, opts)
 
     def _gone(self, wait_s: float = 0.0) -> str | None:
         return self.board.gone(wait_s)
@@ -185,7 +211,28 @@ class QemuLink(SerialLink):
             self.board.cleanup()
 
 
-def open_qemu(url: str) -> QemuLink:
+class QemuEthLink(DatagramLink):
+    """The datagram link to the firmware on an emulated board's Ethernet, which it started and will stop."""
+
+    def __init__(self, board: QemuBoard, opts: WireOptions) -> None:
+        self.board = board
+        self.profile: StepProfile | None = None
+        super().__init__(board.host_sock, board.eth_sock, opts)
+        _wait_ready(self, board, opts)
+
+    def _gone(self, wait_s: float = 0.0) -> str | None:
+        return self.board.gone(wait_s)
+
+    def close(self) -> None:
+        try:
+            super().close()
+        finally:
+            self.board.stop()
+            self.profile = self.board.profile()
+            self.board.cleanup()
+
+
+def open_qemu(url: str) -> QemuLink | QemuEthLink:
     machine, opts = parse_url(url)
     simulated_board(opts)
     frag = url.partition("#")[2]
@@ -199,9 +246,14 @@ def open_qemu(url: str) -> QemuLink:
     spec = MACHINES.get(machine)
     if spec is None:
         raise LinkError(f"--link = {url!r}: unknown emulated board '{machine}', known: {sorted(MACHINES)}")
-    board = QemuBoard(machine, spec, opts.log)
+    # the transport: the machine's fastest unless the URL names one it has
+    transport = opts.transport if "transport=" in frag else spec.transports[0]
+    if transport not in spec.transports:
+        raise LinkError(f"--link = {url!r}: option transport = {transport!r}: qemu:{machine} has "
+                        f"{', '.join(spec.transports)}")
+    board = QemuBoard(machine, spec, opts.log, transport)
     try:
-        link = QemuLink(board, opts)
+        link: QemuLink | QemuEthLink = QemuEthLink(board, opts) if transport == "eth" else QemuLink(board, opts)
     except BaseException:
         board.stop()
         board.cleanup()

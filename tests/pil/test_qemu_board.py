@@ -29,7 +29,9 @@ from hil_bridge.codec import MsgType
 from hil_bridge.errors import ErrCode
 
 REPO = Path(__file__).resolve().parents[2]
-BOARDS = ["mps2-an386", "netduinoplus2", "microbit"]
+# every board, and the mps2-an386 over both its transports: its Ethernet (the default) and its UART
+TARGETS = ["mps2-an386", "mps2-an386#transport=uart", "netduinoplus2", "microbit"]
+TRANSPORT = {"mps2-an386": "eth", "mps2-an386#transport=uart": "uart", "netduinoplus2": "uart", "microbit": "uart"}
 BUDGET_INSN = 20_000  # Cortex-M4F, stated in the Makefile's bench target and docs/pil.md
 # the firmware's own bound on its worst tick, in instructions (docs/pil.md, docs/boards.md);
 # the Cortex-M0 does every float operation in libgcc's soft float
@@ -57,11 +59,13 @@ def _qemu_pids(machine: str, parent: int | None = None) -> set[int]:
     return {int(p) for p in out.stdout.split()}
 
 
-@pytest.mark.parametrize("machine", BOARDS)
+@pytest.mark.parametrize("url", TARGETS)
 @pytest.mark.parametrize("room", [1, 2, 3, 4])
-def test_mission_on_the_emulated_board_equals_the_host_build(room: int, machine: str) -> None:
+def test_mission_on_the_emulated_board_equals_the_host_build(room: int, url: str) -> None:
+    machine = url.partition("#")[0]
     assert not _qemu_pids(machine, os.getpid())
-    target = open_link(f"qemu:{machine}")
+    target = open_link(f"qemu:{url}")
+    assert target.board.transport == TRANSPORT[url]  # type: ignore[attr-defined]
     pid = target.board.proc.pid  # type: ignore[attr-defined]
     try:
         rep = back_to_back(make_scenario(room=room), target)
@@ -102,13 +106,14 @@ def test_the_cortex_m0_keeps_a_20ms_tick() -> None:
     assert worst_ms < 20.0 * 0.8, f"worst step {worst_ms:.1f} ms of a 20 ms tick"
 
 
-@pytest.mark.parametrize("machine", BOARDS)
-def test_board_watchdog_counts_milliseconds(machine: str) -> None:
-    """The board's millisecond clock (SysTick, or TIMER1 on the nRF51) runs: the link watchdog trips."""
+@pytest.mark.parametrize("url", TARGETS)
+def test_board_watchdog_counts_milliseconds(url: str) -> None:
+    """The board's millisecond clock (SysTick, or TIMER1 on the nRF51) runs: the link watchdog trips,
+    and its report comes back on the transport the requests came in on."""
     scn = make_scenario(room=1)  # the start of a mission, as tests/bridge's short_scenario
     scn.timing.find_limit_s = 2.0
     scn.timing.return_limit_s = 1.0
-    with open_link(f"qemu:{machine}#watchdog_ms=100") as link:
+    with open_link(f"qemu:{url}{'&' if '#' in url else '#'}watchdog_ms=100") as link:
         res, trace = run_mission(scn, link)
         assert tuple(trace.actuators[-1, :2]) != (0, 0)  # driving when the inputs stop
         assert int(link.info["watchdog_ms"]) == 100  # type: ignore[attr-defined]
@@ -123,6 +128,31 @@ def test_board_watchdog_counts_milliseconds(machine: str) -> None:
 def test_unknown_machine_is_a_clear_error() -> None:
     with pytest.raises(LinkError, match="unknown emulated board 'vax'"):
         open_link("qemu:vax")
+
+
+@pytest.mark.parametrize(("url", "has"), [("mps2-an386#transport=pigeon", "eth, uart"),
+                                          ("netduinoplus2#transport=eth", "uart"),
+                                          ("microbit#transport=tcp", "uart")])
+def test_a_transport_the_board_lacks_is_a_clear_error(url: str, has: str) -> None:
+    with pytest.raises(LinkError, match=f"option transport = .*: qemu:{url.partition('#')[0]} has {has}$"):
+        open_link(f"qemu:{url}")
+    assert not _qemu_pids(url.partition("#")[0], os.getpid())
+
+
+def test_lost_and_damaged_datagrams_are_counted_and_the_mission_holds() -> None:
+    """The Ethernet link under injected faults: a lost datagram costs one timeout and is counted
+    as a retry, a damaged one as a CRC error (ours) or a board error (the board's report); the
+    mission is still the host build's, bit for bit."""
+    url = "qemu:mps2-an386#drop=0.01&corrupt=0.01&seed=5&timeout_s=0.1"
+    target = open_link(url)
+    try:
+        rep = back_to_back(make_scenario(room=1), target)
+    finally:
+        target.close()
+    assert rep.identical, rep.detail
+    c = rep.results[1].link_counters
+    assert c["retries"] > 0 and c["crc_errors"] > 0 and c["board_errors"] > 0, c
+    assert c["sent"] > c["received"] > rep.ticks_target, c
 
 
 def _start_cli(*args: str) -> subprocess.Popen[str]:
@@ -140,9 +170,10 @@ def _wait_for_qemu(machine: str, cli: subprocess.Popen[str], timeout_s: float = 
     raise AssertionError("QEMU did not start")
 
 
-@pytest.mark.parametrize("machine", BOARDS)
-def test_board_killed_mid_mission_clear_error_no_stray_process(machine: str) -> None:
-    cli = _start_cli("--link", f"qemu:{machine}")
+@pytest.mark.parametrize("url", TARGETS)
+def test_board_killed_mid_mission_clear_error_no_stray_process(url: str) -> None:
+    machine = url.partition("#")[0]
+    cli = _start_cli("--link", f"qemu:{url}")
     pid = _wait_for_qemu(machine, cli)
     time.sleep(1.5)  # the mission is under way
     os.kill(pid, signal.SIGKILL)
@@ -150,14 +181,15 @@ def test_board_killed_mid_mission_clear_error_no_stray_process(machine: str) -> 
     out, err = cli.communicate(timeout=30)
     assert time.monotonic() - t0 < 3.0
     assert cli.returncode == 2, err
-    assert err.count("\n") == 1 and err.startswith(f"ffr: error: qemu:{machine}:") and "killed by SIGKILL" in err
+    assert err.count("\n") == 1 and err.startswith(f"ffr: error: qemu:{url}:") and "killed by SIGKILL" in err
     assert "Traceback" not in err
     assert pid not in _qemu_pids(machine)
 
 
-@pytest.mark.parametrize("machine", BOARDS)
-def test_ctrl_c_shuts_qemu_down(machine: str) -> None:
-    cli = _start_cli("--link", f"qemu:{machine}")
+@pytest.mark.parametrize("url", TARGETS)
+def test_ctrl_c_shuts_qemu_down(url: str) -> None:
+    machine = url.partition("#")[0]
+    cli = _start_cli("--link", f"qemu:{url}")
     pid = _wait_for_qemu(machine, cli)
     time.sleep(1.5)
     cli.send_signal(signal.SIGINT)

@@ -12,19 +12,53 @@ typedef struct {
     ffr_deframer_t rx;
     uint8_t msg[FFR_MSG_MAX + 2u];
     uint8_t reply[FFR_MSG_MAX];
+    /* the frame going out; also a frame transport's datagram coming in, which is decoded into
+     * msg before the reply is framed here */
     uint8_t frame[FFR_FRAME_MAX];
 } board_t;
 
 static board_t g_board; /* the board's RAM */
 
-static void send(board_t *b, size_t len)
+/* the reply (len bytes in b->reply, 0: none) as a frame, on the UART or the frame transport */
+static void send(board_t *b, size_t len, void (*frame_send)(const uint8_t *frame, uint32_t n))
 {
     size_t n;
     if (len == 0u) {
         return;
     }
     n = ffr_frame_encode(b->reply, len, b->frame, sizeof(b->frame));
-    uart_write(b->frame, (uint32_t)n);
+    if (frame_send != 0) {
+        frame_send(b->frame, (uint32_t)n);
+    } else {
+        uart_write(b->frame, (uint32_t)n);
+    }
+}
+
+/* One received frame (got: 1, or the deframer's error) -> the reply's length */
+static size_t on_frame(board_t *b, int got, const uint8_t *f, size_t flen)
+{
+    size_t mlen = 0;
+    int st;
+    if (got < 0) {
+        return ffr_board_link_on_bad_frame(&b->link, got, b->reply, sizeof(b->reply));
+    }
+    st = ffr_frame_decode(f, flen, b->msg, sizeof(b->msg), &mlen);
+    return st != FFR_OK ? ffr_board_link_on_bad_frame(&b->link, st, b->reply, sizeof(b->reply))
+                        : ffr_board_link_on_msg(&b->link, b->msg, mlen, board_millis(), b->reply, sizeof(b->reply));
+}
+
+/* A datagram holds one whole frame: up to its delimiter (none: a damaged datagram) */
+static size_t on_datagram(board_t *b, uint32_t n)
+{
+    uint32_t end = 0u;
+    while (end < n && b->frame[end] != 0u) {
+        ++end;
+    }
+    if (end == 0u || end == n) {
+        return ffr_board_link_on_bad_frame(&b->link, end == 0u ? FFR_E_SHORT : FFR_E_COBS, b->reply,
+                                           sizeof(b->reply));
+    }
+    return on_frame(b, 1, b->frame, end);
 }
 
 static char *put_str(char *p, const char *s)
@@ -70,6 +104,7 @@ void board_loop_run(const board_loop_hooks_t *hooks)
 {
     board_t *b = &g_board;
     uint32_t reported = 0u;
+    void (*via)(const uint8_t *frame, uint32_t n) = 0; /* the last request's transport, 0: the UART */
     ffr_board_link_init(&b->link, FFR_WATCHDOG_DEFAULT_MS, board_millis());
     b->link.step_clock = hooks->step_clock;
     ffr_deframer_init(&b->rx);
@@ -80,25 +115,22 @@ void board_loop_run(const board_loop_hooks_t *hooks)
     }
     for (;;) {
         int c;
-        size_t rlen;
+        uint32_t n;
         while ((c = uart_getc()) >= 0) {
             const uint8_t *f = 0;
-            size_t flen = 0, mlen = 0;
+            size_t flen = 0;
             int got = ffr_deframer_push(&b->rx, (uint8_t)c, &f, &flen);
-            if (got == 0) {
-                continue;
+            if (got != 0) {
+                via = 0;
+                send(b, on_frame(b, got, f, flen), via);
             }
-            if (got < 0) {
-                rlen = ffr_board_link_on_bad_frame(&b->link, got, b->reply, sizeof(b->reply));
-            } else {
-                int st = ffr_frame_decode(f, flen, b->msg, sizeof(b->msg), &mlen);
-                rlen = st != FFR_OK ? ffr_board_link_on_bad_frame(&b->link, st, b->reply, sizeof(b->reply))
-                                    : ffr_board_link_on_msg(&b->link, b->msg, mlen, board_millis(), b->reply,
-                                                            sizeof(b->reply));
-            }
-            send(b, rlen);
         }
-        send(b, ffr_board_link_poll(&b->link, board_millis(), b->reply, sizeof(b->reply)));
+        while (hooks->frame_recv != 0 && (n = hooks->frame_recv(b->frame, sizeof(b->frame))) > 0u) {
+            via = hooks->frame_send;
+            send(b, on_datagram(b, n), via);
+        }
+        /* the watchdog's report goes where the last request came from */
+        send(b, ffr_board_link_poll(&b->link, board_millis(), b->reply, sizeof(b->reply)), via);
         if (hooks->log_puts != 0 && b->link.prof_steps - reported >= PROFILE_EVERY) {
             reported = b->link.prof_steps;
             report_profile(&b->link, hooks->log_puts);

@@ -47,7 +47,7 @@ static uint32_t profile_clock(void)
 
 int main(void)
 {
-    static const board_loop_hooks_t hooks = {profile_clock, BOARD_PROFILE_LOG ? board_log_puts : 0};
+    static const board_loop_hooks_t hooks = {profile_clock, BOARD_PROFILE_LOG ? board_log_puts : 0, 0, 0};
     uart_init();
     board_clock_init();
     profile_clock_init();

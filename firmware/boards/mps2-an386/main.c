@@ -1,13 +1,15 @@
 /*
  * The firmware as a board on QEMU's mps2-an386 (Cortex-M4): frames arrive on
- * UART0, the shared board link (firmware/link/board_link.c: handshake,
- * reset, lockstep, watchdog) answers them with the real firmware, the answer
- * goes back on UART0. Between frames the CPU sleeps.
+ * UART0 or, one frame per Ethernet frame, on the Ethernet controller
+ * (eth_lan9118.c: the fast link under emulation); the shared board link
+ * (firmware/link/board_link.c: handshake, reset, lockstep, watchdog) answers
+ * them with the real firmware, and the answer goes back the way its request
+ * came. Between frames the CPU sleeps.
  *
  * UART1 carries a profile of ffr_step: timer 0 counts read around every
  * step. Under QEMU with -icount shift=0 each instruction is 1 ns of virtual
  * time and the timer counts the 25 MHz clock, so one count is 40 instructions.
- * (The watchdog's milliseconds come from SysTick's interrupt, in virtual
+ * (The watchdog's milliseconds come from SysTick, every 10 ms, in virtual
  * time too: sleeping advances it with the host clock.)
  */
 #include "board.h"
@@ -31,10 +33,11 @@ static uint32_t profile_clock(void) { return 0xFFFFFFFFu - TIMER0_VALUE; }
 
 int main(void)
 {
-    static const board_loop_hooks_t hooks = {profile_clock, uart1_puts};
+    static const board_loop_hooks_t with_eth = {profile_clock, uart1_puts, eth_recv, eth_send};
+    static const board_loop_hooks_t uart_only = {profile_clock, uart1_puts, 0, 0};
     uart_init();
     board_clock_init();
     profile_clock_init();
-    board_loop_run(&hooks);
+    board_loop_run(eth_init() != 0u ? &with_eth : &uart_only);
     return 0;
 }

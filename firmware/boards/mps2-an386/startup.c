@@ -1,6 +1,13 @@
 /*
  * Start-up for the Cortex-M4 on QEMU's mps2-an386: vector table, reset
  * handler (copy .data, zero .bss, enable the FPU), SysTick millisecond clock.
+ *
+ * SysTick interrupts every TICK_MS (10 ms), not every millisecond: the
+ * milliseconds in between come from its down-counter. Its interrupt is the
+ * link watchdog's only wake-up while the board sleeps, and under QEMU each one
+ * wakes the emulator's threads (docs/pil.md, "Speed": at 1 kHz that was about
+ * half of QEMU's thread switches a tick over the Ethernet link). The watchdog
+ * then trips up to 10 ms after its deadline.
  */
 #include <stdint.h>
 
@@ -17,8 +24,11 @@ void systick_handler(void);
 #define SYST_RVR (*(volatile uint32_t *)0xE000E014u)
 #define SYST_CVR (*(volatile uint32_t *)0xE000E018u)
 
-/* the one piece of board state an interrupt must reach */
-static volatile uint32_t g_ms;
+#define TICK_MS 10u
+#define COUNTS_PER_MS (BOARD_CPU_HZ / 1000u)
+
+/* the one piece of board state an interrupt must reach: SysTick periods so far */
+static volatile uint32_t g_ticks;
 
 /* initial stack pointer, the 15 system exception handlers, the external interrupts */
 typedef struct {
@@ -31,7 +41,8 @@ __attribute__((section(".vectors"), used)) static const vector_table_t vectors =
     &_estack,
     {reset_handler, default_handler, default_handler, default_handler, default_handler, default_handler, 0, 0, 0,
      0, default_handler, default_handler, 0, default_handler, systick_handler},
-    {uart0_rx_handler}, /* IRQ 0: UART0 receive; the others are never enabled */
+    /* IRQ 0: UART0 receive; IRQ 13: Ethernet; the others are never enabled */
+    {uart0_rx_handler, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, eth_irq_handler},
 };
 
 void reset_handler(void)
@@ -55,23 +66,46 @@ void default_handler(void)
     board_exit(99);
 }
 
-void systick_handler(void) { g_ms++; }
+void systick_handler(void) { g_ticks++; }
 
 void board_clock_init(void)
 {
-    SYST_RVR = BOARD_CPU_HZ / 1000u - 1u;
+    SYST_RVR = COUNTS_PER_MS * TICK_MS - 1u;
     SYST_CVR = 0u;
     SYST_CSR = 7u; /* processor clock, interrupt, enable */
 }
 
-uint32_t board_millis(void) { return g_ms; }
+/* the last value board_millis returned (main loop only: the only caller) */
+static uint32_t g_last_ms;
+
+/* periods * TICK_MS + the counts gone in this period. The count and the period belong
+ * together unless the counter has reloaded while its interrupt is not yet taken (an emulator
+ * runs its timer callbacks between blocks of instructions): then the sum is up to one period
+ * behind, or ahead. So the reads are repeated while the period count moves under them, and
+ * the result never goes back: a clock that stepped back would make the link watchdog see an
+ * age of four billion milliseconds (seen once in a UART mission, a WATCHDOG report). Ahead by
+ * up to 10 ms, it waits until the true time catches up. */
+uint32_t board_millis(void)
+{
+    uint32_t ticks, left, now;
+    do {
+        ticks = g_ticks;
+        left = SYST_CVR;
+    } while (ticks != g_ticks);
+    now = ticks * TICK_MS + (SYST_RVR - left) / COUNTS_PER_MS;
+    if ((int32_t)(now - g_last_ms) > 0) {
+        g_last_ms = now;
+    }
+    return g_last_ms;
+}
 
 void board_idle(void)
 {
     /* masked, test, sleep: an interrupt that arrives after the test still
-     * wakes the wfi, and is taken once unmasked */
+     * wakes the wfi, and is taken once unmasked (the Ethernet's wake-up is
+     * armed here, masked: eth_lan9118.c) */
     __asm__ volatile("cpsid i" ::: "memory");
-    if (uart_rx_empty()) {
+    if (uart_rx_empty() && eth_idle_arm() != 0u) {
         __asm__ volatile("wfi");
     }
     __asm__ volatile("cpsie i" ::: "memory");

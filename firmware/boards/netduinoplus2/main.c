@@ -35,7 +35,7 @@ static uint32_t profile_clock(void) { return TIM2_CNT; }
 
 int main(void)
 {
-    static const board_loop_hooks_t hooks = {profile_clock, uart_log_puts};
+    static const board_loop_hooks_t hooks = {profile_clock, uart_log_puts, 0, 0};
     uart_init();
     board_clock_init();
     profile_clock_init();
