@@ -97,7 +97,7 @@ static int next_vector(FILE *f, vector_t *v)
 /* Does the vector hold (1, else 0)? -1 for a kind it does not know. y: its second field (CAN: parsed in place). */
 static int vector_holds(const vector_t *v, char *y)
 {
-    static uint8_t a[MAXB], b[MAXB], c[MAXB + 64];
+    uint8_t a[MAXB], b[MAXB], c[MAXB + 64];
     ffr_msg_t m;
     const char *kind = v->kind;
     size_t na = unhex(v->x, strlen(v->x), a), nb = unhex(y, strlen(y), b), nc = 0;
@@ -133,7 +133,7 @@ static int vector_holds(const vector_t *v, char *y)
 /* Checks every vector of one kind in the file; there must be at least `least` of them. */
 static void check_kind(const char *kind, int least)
 {
-    static vector_t v;
+    vector_t v;
     int count = 0;
     FILE *f = fopen(wire_vectors_path, "r");
     CHECK(f != NULL);
@@ -170,7 +170,7 @@ TEST(every_bad_frame_vector_gets_its_status) { check_kind("bad", 1); }
 TEST(every_vector_is_of_a_known_kind)
 {
     static const char *const kinds[] = {"crc", "cobs", "frame", "msg", "can", "canfd", "bad"};
-    static vector_t v;
+    vector_t v;
     int count = 0;
     size_t k;
     FILE *f = fopen(wire_vectors_path, "r");
