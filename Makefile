@@ -67,13 +67,14 @@ $(BUILD)/host/ffr-host-board: $(FW_SRCS) $(WIRE_SRCS) $(HOST_BOARD_SRCS) $(FW_HD
 	@mkdir -p $(dir $@)
 	$(CC) $(CSTD) -O2 -Ifirmware/boards/host -o $@ $(FW_SRCS) $(WIRE_SRCS) $(HOST_BOARD_SRCS)
 
-$(BUILD)/host/ffr_wire_tests: $(FW_SRCS) $(WIRE_SRCS) $(WIRE_TESTS) $(FW_HDRS) firmware/tests/unit.h Makefile
+# the wire tests share the unit tests' runner (firmware/tests/unit_runner.c)
+$(BUILD)/host/ffr_wire_tests: $(FW_SRCS) $(WIRE_SRCS) $(WIRE_TESTS) $(FW_HDRS) firmware/tests/unit.h firmware/tests/unit_runner.c firmware/tests/wire/wire_tests.h Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(CSTD) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -Ifirmware/tests \
-		-Ifirmware/tests/wire -o $@ $(FW_SRCS) $(WIRE_SRCS) $(WIRE_TESTS) -lm
+		-Ifirmware/tests/wire -o $@ $(FW_SRCS) $(WIRE_SRCS) $(WIRE_TESTS) firmware/tests/unit_runner.c -lm
 
 wire-test: $(BUILD)/host/ffr_wire_tests
-	$(BUILD)/host/ffr_wire_tests $(WIRE_VECTORS)
+	$(BUILD)/host/ffr_wire_tests --vectors $(WIRE_VECTORS)
 
 # libFuzzer with ASan+UBSan on the board's whole receive path; FUZZ_SECONDS bounds it.
 $(BUILD)/fuzz/ffr_fuzz_rx: $(FW_SRCS) $(WIRE_SRCS) firmware/tests/fuzz/fuzz_rx.c $(FW_HDRS) Makefile
@@ -187,7 +188,7 @@ lint: setup
 test: setup firmware-host $(BUILD)/host/ffr_unit_tests $(BUILD)/host/ffr_wire_tests
 	$(VENV)/bin/ruff check .
 	$(BUILD)/host/ffr_unit_tests
-	$(BUILD)/host/ffr_wire_tests $(WIRE_VECTORS)
+	$(BUILD)/host/ffr_wire_tests --vectors $(WIRE_VECTORS)
 	$(VENV)/bin/pytest -q
 
 # The fresh machine is busy and slow: the missions over every link again, with one busy

@@ -2,7 +2,8 @@
  * Minimal unit-test support for the firmware's host tests (our own, in the
  * spirit of Grenning's TEST_GROUP/TEST): every test is a named function
  * that builds its own fixture (no state is shared between tests), each
- * file lists its tests in one SUITE, and main.c runs the suites. A failed
+ * file lists its tests in one SUITE, and main.c runs the suites (with the
+ * runner in unit_runner.c, which the wire tests' main.c uses too). A failed
  * check prints file:line, suite.test and the expression.
  *
  *   TEST(a_quarter_turn_is_a_quarter_turn)
@@ -80,6 +81,12 @@ typedef struct {
             printf("%s = %g, want %g +- %g\n", #a, a_, b_, (double)(tol));             \
         }                                                                              \
     } while (0)
+
+/* The runner (unit_runner.c): runs the suites as argv asks (NAME..., --list,
+ * --demo-failure runs demo), prints "label: N suites, N tests (N failed), N checks
+ * passed, N failed" and returns the exit status. */
+int unit_run(const char *label, const unit_suite_t *const *suites, int n_suites, const unit_suite_t *demo,
+             int argc, char **argv);
 
 extern const unit_suite_t suite_fmath;
 extern const unit_suite_t suite_ir_calibration;

@@ -1,19 +1,31 @@
-/* C tests of the wire codec and the board link; argv[1]: the shared test
- * vectors (tests/bridge/vectors/wire_vectors.txt), also read by pytest. */
+/*
+ * C tests of the wire codec and the board link, and the shared test vectors
+ * (tests/bridge/vectors/wire_vectors.txt, also read by pytest):
+ *   ffr_wire_tests [--vectors FILE] [NAME... | --list | --demo-failure]
+ * NAME is a suite or suite.test; FILE defaults to the repository's vectors file
+ * (a path relative to the repository root, where make and pytest run it).
+ * The runner is firmware/tests/unit_runner.c, the unit tests' own; the last line
+ * counts suites, tests and checks (tests/bridge/test_c_wire.py asserts the exact numbers).
+ */
+#include <string.h>
+
 #include "unit.h"
 #include "wire_tests.h"
 
-unit_tally_t unit_tally;
+const char *wire_vectors_path = "tests/bridge/vectors/wire_vectors.txt";
+
+static const unit_suite_t *const k_suites[] = {&suite_codec, &suite_board_link, &suite_vectors};
+
+TEST(a_check_that_fails_on_purpose) { CHECK(1 + 1 == 3); }
+SUITE(wire_demo, TEST_REF(a_check_that_fails_on_purpose));
 
 int main(int argc, char **argv)
 {
-    suite_codec();
-    suite_board_link();
-    if (argc > 1) {
-        suite_vectors(argv[1]);
-    } else {
-        printf("wire: no vectors file given, vector suite skipped\n");
+    if (argc >= 3 && strcmp(argv[1], "--vectors") == 0) {
+        wire_vectors_path = argv[2];
+        argv[2] = argv[0]; /* the rest, as if the program were called without the option */
+        argv += 2;
+        argc -= 2;
     }
-    printf("wire: %d passed, %d failed\n", unit_tally.passed, unit_tally.failed);
-    return unit_tally.failed == 0 ? 0 : 1;
+    return unit_run("wire", k_suites, (int)(sizeof(k_suites) / sizeof(k_suites[0])), &suite_wire_demo, argc, argv);
 }
