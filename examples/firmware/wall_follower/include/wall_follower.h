@@ -60,12 +60,14 @@ struct ffr_config {
     float arc_max_deg;           /* arc this far with no wall: open floor      */
     float start_turn_deg;        /* at home, turn this much first (+ = left)   */
     float entry_mm;              /* past a line this far, then scan            */
-    float line_holdoff_mm;       /* after a scan, lines within this travel are not scanned */
+    float line_holdoff_mm;       /* a line within this travel of the last is the same one */
     float flame_detect;          /* counts, both sensors: a flame seen         */
     float flame_near;            /* counts, both sensors: close enough for the fans */
     float flame_out;             /* counts, both sensors: below this it is out */
     float flame_steer_deg_s;     /* yaw rate for a full left/right imbalance   */
     float approach_stop_mm;      /* CF closer than this: stop approaching      */
+    float guard_mm;              /* approaching, LF or RF closer than this: steer off */
+    float guard_kp;              /* yaw rate (deg/s) per mm inside guard_mm    */
     float backup_mm;             /* after the flame: back off this far         */
     float home_zone_mm;          /* a line this near the start (odometry) is home's circle */
     float away_mm;               /* ... once the robot was this far away       */
@@ -155,7 +157,8 @@ struct ffr_state {
     uint8_t attempts;
     uint8_t lines;               /* white lines crossed                        */
     uint8_t rooms;               /* scans made                                 */
-    uint8_t reserved[2];
+    uint8_t doors;               /* doorway lines crossed (odd: in a room)     */
+    uint8_t reserved;
     float x_mm, y_mm, heading_rad;
     float dist_mm;               /* path length                                */
     float v_mm_s[2];             /* measured wheel speeds, filtered            */
@@ -168,7 +171,7 @@ struct ffr_state {
     float entered_rad;           /* heading when the state was entered         */
     float target_rad;            /* turn target                                */
     float scan_at_mm;            /* a scan is due at this distance (< 0: none) */
-    float last_scan_mm;          /* dist_mm of the last scan                   */
+    float last_line_mm;          /* dist_mm of the last white line             */
     float resume_rad;            /* heading to turn back to after a scan       */
     float best_sum;              /* the scan's brightest reading               */
     float best_rad;              /* and its heading                            */

@@ -55,12 +55,14 @@ void ffr_config_default(ffr_config_t *c)
     c->arc_max_deg = 300.0f;
     c->start_turn_deg = 180.0f;
     c->entry_mm = 120.0f;
-    c->line_holdoff_mm = 300.0f;
-    c->flame_detect = 170.0f;
+    c->line_holdoff_mm = 100.0f;
+    c->flame_detect = 250.0f;
     c->flame_near = 3000.0f;
     c->flame_out = 120.0f;
     c->flame_steer_deg_s = 90.0f;
     c->approach_stop_mm = 120.0f;
+    c->guard_mm = 150.0f;
+    c->guard_kp = 1.5f;
     c->backup_mm = 100.0f;
     c->home_zone_mm = 450.0f;
     c->away_mm = 1000.0f;
@@ -142,6 +144,8 @@ static const ffr_field_t k_layout[] = {
     F32(flame_out),
     F32(flame_steer_deg_s),
     F32(approach_stop_mm),
+    F32(guard_mm),
+    F32(guard_kp),
     F32(backup_mm),
     F32(home_zone_mm),
     F32(away_mm),

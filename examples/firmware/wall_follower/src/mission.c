@@ -35,7 +35,7 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->cfg = *cfg;
     st->side = 1.0f;
     st->scan_at_mm = -1.0f;
-    st->last_scan_mm = -1.0e6f;
+    st->last_line_mm = -1.0e6f;
     st->state = WF_IDLE;
 }
 
@@ -63,20 +63,33 @@ static wf_event_t common_event(ffr_state_t *st, const wf_sense_t *s)
         st->fail_code = WF_FAIL_TIMEOUT;
         return WF_EV_FAIL;
     }
-    if (s->line_edge) {
+    /* lines met driving forward only: turning on the spot, the sensor ahead of
+     * the wheels sweeps a circle and may cross a line it has just crossed */
+    if (s->line_edge && st->cmd_v > 1.0f && st->dist_mm - st->last_line_mm > c->line_holdoff_mm) {
+        st->last_line_mm = st->dist_mm;
         if (st->lines < 255u) {
             st->lines++;
         }
-        if (r < c->home_zone_mm && st->max_away_mm > c->away_mm) {
+        if (r < c->home_zone_mm) {
+            if (st->max_away_mm <= c->away_mm) {
+                return WF_EV_NONE; /* leaving home */
+            }
             if (st->flags & FFR_FLAG_EXTINGUISHED) {
                 return WF_EV_HOME;
             }
             st->fail_code = WF_FAIL_NO_FLAME;
             return WF_EV_FAIL;
         }
-        if (r >= c->home_zone_mm && !(st->flags & FFR_FLAG_EXTINGUISHED) && st->scan_at_mm < 0.0f
-            && st->dist_mm - st->last_scan_mm > c->line_holdoff_mm) {
-            st->scan_at_mm = st->dist_mm + c->entry_mm;
+        /* a doorway: the follower goes in and out of each room by the same door */
+        st->doors++;
+        if (st->doors & 1u) {
+            st->flags = (uint8_t)(st->flags | FFR_FLAG_IN_ROOM);
+            if (!(st->flags & FFR_FLAG_EXTINGUISHED)) {
+                st->scan_at_mm = st->dist_mm + c->entry_mm;
+            }
+        } else {
+            st->flags = (uint8_t)(st->flags & ~FFR_FLAG_IN_ROOM);
+            st->scan_at_mm = -1.0f; /* never scan a room from outside its door */
         }
     }
     if (st->scan_at_mm >= 0.0f && st->dist_mm >= st->scan_at_mm && row->next[WF_EV_LINE] != 0u

@@ -88,7 +88,6 @@ static void scan_start(ffr_state_t *st)
     st->best_rad = st->heading_rad;
     st->scan_x_mm = st->x_mm;
     st->scan_y_mm = st->y_mm;
-    st->last_scan_mm = st->dist_mm;
     st->scan_at_mm = -1.0f;
     st->target_rad = 0.0f; /* the scan's accumulated rotation */
     if (st->rooms < 255u) {
@@ -255,8 +254,16 @@ static wf_event_t approach_tick(ffr_state_t *st, const wf_sense_t *s)
     const struct ffr_config *c = &st->cfg;
     float lim = c->max_yaw_deg_s * WF_DEG;
     float bal = s->flame_sum > 1.0f ? s->flame_diff / s->flame_sum : 0.0f;
+    float w = c->flame_steer_deg_s * bal;
+    /* a door's edge or a wall beside the way: the corner rangers push the robot off it */
+    if (s->ir_mm[FFR_IR_LF] < c->guard_mm) {
+        w -= c->guard_kp * (c->guard_mm - s->ir_mm[FFR_IR_LF]);
+    }
+    if (s->ir_mm[FFR_IR_RF] < c->guard_mm) {
+        w += c->guard_kp * (c->guard_mm - s->ir_mm[FFR_IR_RF]);
+    }
     st->cmd_v = c->approach_mm_s;
-    st->cmd_w = clampf(c->flame_steer_deg_s * WF_DEG * bal, -lim, lim);
+    st->cmd_w = clampf(w * WF_DEG, -lim, lim);
     if (s->flame_sum >= c->flame_near || s->ir_mm[FFR_IR_CF] < c->approach_stop_mm) {
         return WF_EV_NEAR;
     }
