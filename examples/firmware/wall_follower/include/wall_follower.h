@@ -68,7 +68,6 @@ struct ffr_config {
     float approach_stop_mm;      /* CF closer than this: stop approaching      */
     float guard_mm;              /* approaching, LF or RF closer than this: steer off */
     float guard_kp;              /* yaw rate (deg/s) per mm inside guard_mm    */
-    float backup_mm;             /* after the flame: back off this far         */
     float home_zone_mm;          /* a line this near the start (odometry) is home's circle */
     float away_mm;               /* ... once the robot was this far away       */
     float home_advance_mm;       /* past home's line, then stop                */
@@ -92,7 +91,6 @@ typedef enum {
     WF_AIM,
     WF_APPROACH,
     WF_EXTINGUISH,
-    WF_BACKUP,
     WF_GOTO,
     WF_RESUME,
     WF_HOME,
@@ -158,7 +156,7 @@ struct ffr_state {
     uint8_t lines;               /* white lines crossed                        */
     uint8_t rooms;               /* scans made                                 */
     uint8_t doors;               /* doorway lines crossed (odd: in a room)     */
-    uint8_t reserved;
+    uint8_t prev_state;          /* the state before this one                  */
     float x_mm, y_mm, heading_rad;
     float dist_mm;               /* path length                                */
     float v_mm_s[2];             /* measured wheel speeds, filtered            */
@@ -178,6 +176,9 @@ struct ffr_state {
     float max_away_mm;           /* farthest from the start so far             */
     float scan_x_mm, scan_y_mm;  /* where the scan was made (odometry)         */
     float goal_x_mm, goal_y_mm;  /* where GOTO and HOME drive to               */
+    float follow_from_mm;        /* dist_mm where following this wall began    */
+    float scan_dist_mm;          /* dist_mm at the last scan                   */
+    float pending_run_mm;        /* back from a flame: the wall's run ahead (< 0: none) */
     float end_at_mm;             /* dist_mm where the robot is abreast of the wall's last seen point */
     float side;                  /* +1: follow the left wall, -1: the right (the way back) */
     float cmd_v;                 /* this tick's command: mm/s, rad/s           */

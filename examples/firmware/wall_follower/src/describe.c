@@ -63,7 +63,6 @@ void ffr_config_default(ffr_config_t *c)
     c->approach_stop_mm = 120.0f;
     c->guard_mm = 150.0f;
     c->guard_kp = 1.5f;
-    c->backup_mm = 100.0f;
     c->home_zone_mm = 450.0f;
     c->away_mm = 1000.0f;
     c->home_advance_mm = 0.0f;
@@ -146,7 +145,6 @@ static const ffr_field_t k_layout[] = {
     F32(approach_stop_mm),
     F32(guard_mm),
     F32(guard_kp),
-    F32(backup_mm),
     F32(home_zone_mm),
     F32(away_mm),
     F32(home_advance_mm),

@@ -14,6 +14,7 @@ void wf_enter(ffr_state_t *st, uint8_t state)
         state = WF_FAILED;
     }
     row = &wf_state_table()[state];
+    st->prev_state = st->state;
     st->state = state;
     st->entered_ms = st->t_ms;
     st->entered_mm = st->dist_mm;
@@ -35,6 +36,7 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->cfg = *cfg;
     st->side = 1.0f;
     st->scan_at_mm = -1.0f;
+    st->pending_run_mm = -1.0f;
     st->last_line_mm = -1.0e6f;
     st->state = WF_IDLE;
 }

@@ -71,6 +71,21 @@ static void keep_heading(ffr_state_t *st)
     st->target_rad = st->heading_rad;
 }
 
+/* A new wall to follow (not the same one after a dropout or a scan): note
+ * where its run began. Back from a flame, the wall runs on for as long as
+ * the robot had followed it when it scanned. */
+static void follow_entry(ffr_state_t *st)
+{
+    if (st->prev_state == WF_ARC || st->prev_state == WF_TURN_AWAY || st->prev_state == WF_FIND_WALL) {
+        st->follow_from_mm = st->dist_mm;
+    }
+    if (st->pending_run_mm >= 0.0f) {
+        st->end_at_mm = st->dist_mm + st->pending_run_mm;
+        st->follow_from_mm = st->dist_mm;
+        st->pending_run_mm = -1.0f;
+    }
+}
+
 static void start_turn(ffr_state_t *st)
 {
     st->target_rad = wf_wrap(st->heading_rad + st->cfg.start_turn_deg * WF_DEG);
@@ -86,6 +101,7 @@ static void scan_start(ffr_state_t *st)
 {
     st->best_sum = 0.0f;
     st->best_rad = st->heading_rad;
+    st->scan_dist_mm = st->dist_mm;
     st->scan_x_mm = st->x_mm;
     st->scan_y_mm = st->y_mm;
     st->scan_at_mm = -1.0f;
@@ -111,16 +127,16 @@ static void extinguish(ffr_state_t *st)
     st->flags = (uint8_t)(st->flags | FFR_FLAG_FLAME_SEEN);
 }
 
-/* The flame is out: go back to where it was seen, then follow the other
- * wall: the way in, backwards, leads home. */
-static void backup(ffr_state_t *st)
+/* The flame is out: back to where it was seen, then follow the other wall:
+ * the way in, backwards, leads home. */
+static void back_to_scan(ffr_state_t *st)
 {
     st->flags = (uint8_t)(st->flags | FFR_FLAG_EXTINGUISHED);
-    st->target_rad = st->heading_rad;
     st->goal_x_mm = st->scan_x_mm;
     st->goal_y_mm = st->scan_y_mm;
     st->resume_rad = wf_wrap(st->resume_rad + WF_PI);
     st->resume_state = WF_FOLLOW;
+    st->pending_run_mm = st->scan_dist_mm - st->follow_from_mm;
     st->side = -st->side;
 }
 
@@ -172,7 +188,9 @@ static wf_event_t follow_tick(ffr_state_t *st, const wf_sense_t *s)
         return WF_EV_OPEN;
     }
     /* where the front ranger meets the wall: when it ends, its end is about there */
-    st->end_at_mm = st->dist_mm + s->side_hit_x_mm;
+    if (s->side_front_mm < c->open_mm) {
+        st->end_at_mm = st->dist_mm + s->side_hit_x_mm;
+    }
     st->cmd_v = cruise(st, s);
     if (s->side_ok) {
         float w = c->wall_kp * (s->side_mm - c->wall_mm) + c->angle_kp * s->side_deg;
@@ -308,39 +326,39 @@ static wf_event_t extinguish_tick(ffr_state_t *st, const wf_sense_t *s)
     return WF_EV_NONE;
 }
 
-static wf_event_t backup_tick(ffr_state_t *st, const wf_sense_t *s)
-{
-    (void)s;
-    hold(st, -0.5f * st->cfg.approach_mm_s);
-    return since_mm(st) >= st->cfg.backup_mm ? WF_EV_DONE : WF_EV_NONE;
-}
-
-/* To the odometry point goal: face it, then drive to it. */
+/* To the odometry point goal, in a straight line: forwards when it lies
+ * ahead, backwards when behind (back along the way the robot came: after the
+ * flame, no turn on the spot where the walls may be close). */
 static wf_event_t goto_tick(ffr_state_t *st, const wf_sense_t *s)
 {
     const struct ffr_config *c = &st->cfg;
     float dx = st->goal_x_mm - st->x_mm;
     float dy = st->goal_y_mm - st->y_mm;
     float d = wf_sqrt(dx * dx + dy * dy);
-    float err;
+    float bearing = wf_atan2(dy, dx);
+    float err = wf_wrap(bearing - st->heading_rad);
+    float dir = 1.0f;
     (void)s;
     if (d < 15.0f) {
         st->cmd_v = 0.0f;
         st->cmd_w = 0.0f;
         return WF_EV_DONE;
     }
-    st->target_rad = wf_atan2(dy, dx);
-    err = wf_wrap(st->target_rad - st->heading_rad);
-    if (absf(err) > 10.0f * WF_DEG && d > 40.0f) {
-        (void)turn_to(st, c->turn_deg_s);
-        return WF_EV_NONE;
+    if (absf(err) > 0.5f * WF_PI) { /* behind: back up, the rear towards it */
+        dir = -1.0f;
+        err = wf_wrap(err + WF_PI);
     }
-    if (absf(err) > 60.0f * WF_DEG) { /* passed it */
+    if (d < 40.0f && absf(err) > 30.0f * WF_DEG) { /* passed it */
         st->cmd_v = 0.0f;
         st->cmd_w = 0.0f;
         return WF_EV_DONE;
     }
-    hold(st, clampf(d * 2.0f, 40.0f, c->approach_mm_s));
+    st->target_rad = wf_wrap(st->heading_rad + err);
+    if (absf(err) > 25.0f * WF_DEG) { /* far off the line: turn first */
+        (void)turn_to(st, c->turn_deg_s);
+        return WF_EV_NONE;
+    }
+    hold(st, dir * clampf(d * 2.0f, 40.0f, c->approach_mm_s));
     return WF_EV_NONE;
 }
 
@@ -363,7 +381,7 @@ static const wf_state_row_t k_table[WF_STATE_COUNT] = {
     [WF_IDLE] = {0, idle_tick, {[WF_EV_DONE] = WF_START_TURN, [WF_EV_FAIL] = WF_FAILED}},
     [WF_START_TURN] = {start_turn, turn_tick,
                        {[WF_EV_DONE] = WF_FIND_WALL, [WF_EV_FAIL] = WF_FAILED}},
-    [WF_FOLLOW] = {0, follow_tick,
+    [WF_FOLLOW] = {follow_entry, follow_tick,
                    {[WF_EV_FRONT] = WF_TURN_AWAY, [WF_EV_OPEN] = WF_CORNER, [WF_EV_LINE] = WF_SCAN, TRAVEL}},
     [WF_CORNER] = {keep_heading, corner_tick,
                    {[WF_EV_DONE] = WF_ARC, [WF_EV_WALL] = WF_FOLLOW, [WF_EV_FRONT] = WF_TURN_AWAY, TRAVEL}},
@@ -378,9 +396,8 @@ static const wf_state_row_t k_table[WF_STATE_COUNT] = {
     [WF_APPROACH] = {0, approach_tick,
                      {[WF_EV_NEAR] = WF_EXTINGUISH, [WF_EV_LOST] = WF_SCAN, [WF_EV_FAIL] = WF_FAILED}},
     [WF_EXTINGUISH] = {extinguish, extinguish_tick,
-                       {[WF_EV_OUT] = WF_BACKUP, [WF_EV_FAIL] = WF_FAILED}},
-    [WF_BACKUP] = {backup, backup_tick, {[WF_EV_DONE] = WF_GOTO, [WF_EV_FAIL] = WF_FAILED}},
-    [WF_GOTO] = {0, goto_tick, {[WF_EV_DONE] = WF_RESUME, [WF_EV_FAIL] = WF_FAILED}},
+                       {[WF_EV_OUT] = WF_GOTO, [WF_EV_FAIL] = WF_FAILED}},
+    [WF_GOTO] = {back_to_scan, goto_tick, {[WF_EV_DONE] = WF_RESUME, [WF_EV_FAIL] = WF_FAILED}},
     [WF_RESUME] = {resume, turn_tick, {[WF_EV_DONE] = WF_RESUME_PREV, [WF_EV_FAIL] = WF_FAILED}},
     [WF_HOME] = {home, goto_tick, {[WF_EV_DONE] = WF_DONE, [WF_EV_FAIL] = WF_FAILED}},
     [WF_DONE] = {done, stop_tick, {0}},
@@ -391,7 +408,7 @@ static const wf_state_row_t k_table[WF_STATE_COUNT] = {
 static const char *const k_names[WF_STATE_COUNT] = {
     [WF_IDLE] = "IDLE", [WF_START_TURN] = "START_TURN", [WF_FOLLOW] = "FOLLOW", [WF_CORNER] = "CORNER",
     [WF_ARC] = "ARC", [WF_TURN_AWAY] = "TURN_AWAY", [WF_FIND_WALL] = "FIND_WALL", [WF_SCAN] = "SCAN",
-    [WF_AIM] = "AIM", [WF_APPROACH] = "APPROACH", [WF_EXTINGUISH] = "EXTINGUISH", [WF_BACKUP] = "BACKUP",
+    [WF_AIM] = "AIM", [WF_APPROACH] = "APPROACH", [WF_EXTINGUISH] = "EXTINGUISH",
     [WF_GOTO] = "GOTO", [WF_RESUME] = "RESUME", [WF_HOME] = "HOME", [WF_DONE] = "DONE", [WF_FAILED] = "FAILED",
 };
 
