@@ -70,7 +70,6 @@ struct ffr_config {
     float guard_kp;              /* yaw rate (deg/s) per mm inside guard_mm    */
     float home_zone_mm;          /* a line this near the start (odometry) is home's circle */
     float away_mm;               /* ... once the robot was this far away       */
-    float home_advance_mm;       /* past home's line, then stop                */
     uint32_t out_confirm_ms;     /* flame below flame_out this long: out       */
     uint32_t fan_max_ms;         /* fans on at most this long                  */
     uint32_t mission_max_ms;     /* give up after this long                    */
@@ -157,6 +156,8 @@ struct ffr_state {
     uint8_t rooms;               /* scans made                                 */
     uint8_t doors;               /* doorway lines crossed (odd: in a room)     */
     uint8_t prev_state;          /* the state before this one                  */
+    uint8_t home_phase;          /* HOME: 0 across the circle, 1 back to the chord's middle */
+    uint8_t reserved2[3];
     float x_mm, y_mm, heading_rad;
     float dist_mm;               /* path length                                */
     float v_mm_s[2];             /* measured wheel speeds, filtered            */

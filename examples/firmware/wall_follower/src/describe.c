@@ -65,7 +65,6 @@ void ffr_config_default(ffr_config_t *c)
     c->guard_kp = 1.5f;
     c->home_zone_mm = 450.0f;
     c->away_mm = 1000.0f;
-    c->home_advance_mm = 0.0f;
     c->out_confirm_ms = 500u;
     c->fan_max_ms = 10000u;
     c->mission_max_ms = 290000u;
@@ -147,7 +146,6 @@ static const ffr_field_t k_layout[] = {
     F32(guard_kp),
     F32(home_zone_mm),
     F32(away_mm),
-    F32(home_advance_mm),
     CFG(out_confirm_ms, FFR_T_U32, 1),
     CFG(fan_max_ms, FFR_T_U32, 1),
     CFG(mission_max_ms, FFR_T_U32, 1),

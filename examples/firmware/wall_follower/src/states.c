@@ -140,11 +140,7 @@ static void back_to_scan(ffr_state_t *st)
     st->side = -st->side;
 }
 
-static void home(ffr_state_t *st)
-{
-    st->goal_x_mm = 0.0f;
-    st->goal_y_mm = 0.0f;
-}
+
 
 static void done(ffr_state_t *st)
 {
@@ -362,6 +358,39 @@ static wf_event_t goto_tick(ffr_state_t *st, const wf_sense_t *s)
     return WF_EV_NONE;
 }
 
+/* Home's circle: its ring is a white line. The line sensor crossed it once
+ * (entering); straight on to the crossing out: the middle of that chord is
+ * inside the circle whatever the chord. */
+static void sensor_xy(const ffr_state_t *st, float *x, float *y)
+{
+    *x = st->x_mm + st->cfg.line_sensor_x_mm * wf_cos(st->heading_rad);
+    *y = st->y_mm + st->cfg.line_sensor_x_mm * wf_sin(st->heading_rad);
+}
+
+static void home(ffr_state_t *st)
+{
+    sensor_xy(st, &st->goal_x_mm, &st->goal_y_mm);
+    st->target_rad = st->heading_rad;
+    st->home_phase = 0u;
+}
+
+static wf_event_t home_tick(ffr_state_t *st, const wf_sense_t *s)
+{
+    const struct ffr_config *c = &st->cfg;
+    if (st->home_phase == 0u) {
+        hold(st, 0.5f * c->approach_mm_s);
+        if ((s->line_edge && since_mm(st) > 40.0f) || front_blocked(st, s) || since_mm(st) > 400.0f) {
+            float x, y;
+            sensor_xy(st, &x, &y);
+            st->goal_x_mm = 0.5f * (st->goal_x_mm + x);
+            st->goal_y_mm = 0.5f * (st->goal_y_mm + y);
+            st->home_phase = 1u;
+        }
+        return WF_EV_NONE;
+    }
+    return goto_tick(st, s);
+}
+
 static wf_event_t stop_tick(ffr_state_t *st, const wf_sense_t *s)
 {
     (void)s;
@@ -399,7 +428,7 @@ static const wf_state_row_t k_table[WF_STATE_COUNT] = {
                        {[WF_EV_OUT] = WF_GOTO, [WF_EV_FAIL] = WF_FAILED}},
     [WF_GOTO] = {back_to_scan, goto_tick, {[WF_EV_DONE] = WF_RESUME, [WF_EV_FAIL] = WF_FAILED}},
     [WF_RESUME] = {resume, turn_tick, {[WF_EV_DONE] = WF_RESUME_PREV, [WF_EV_FAIL] = WF_FAILED}},
-    [WF_HOME] = {home, goto_tick, {[WF_EV_DONE] = WF_DONE, [WF_EV_FAIL] = WF_FAILED}},
+    [WF_HOME] = {home, home_tick, {[WF_EV_DONE] = WF_DONE, [WF_EV_FAIL] = WF_FAILED}},
     [WF_DONE] = {done, stop_tick, {0}},
     [WF_FAILED] = {failed, stop_tick, {0}},
 };
