@@ -15,7 +15,7 @@ from importlib.metadata import EntryPoint, entry_points
 
 import numpy as np
 
-from ffr_link.abi import CONFIG_DTYPE, INPUTS_DTYPE, OUTPUTS_DTYPE
+from ffr_link.abi import INPUTS_DTYPE, OUTPUTS_DTYPE, LibraryLayout
 
 
 class LinkError(RuntimeError):
@@ -78,10 +78,25 @@ class FirmwareLink(ABC):
         """The counters so far (a snapshot)."""
         return self.counters.copy()
 
+    @property
+    def firmware(self) -> LibraryLayout:
+        """What the firmware behind this link says about itself (its config dtype, names, hash).
+        A board runs the firmware of the host build ($FFR_FIRMWARE_LIB, else ours): its library's."""
+        fw = self.__dict__.get("_firmware")
+        if fw is None:
+            from ffr_link.ctypes_link import firmware_info
+
+            fw = self.__dict__["_firmware"] = firmware_info()
+        return fw
+
+    @firmware.setter
+    def firmware(self, value: LibraryLayout) -> None:
+        self.__dict__["_firmware"] = value
+
     def reset(self, config: np.ndarray) -> None:
-        """(Re)start the firmware with a configuration (a CONFIG_DTYPE record)."""
-        if config.dtype != CONFIG_DTYPE:
-            raise TypeError("config must be a CONFIG_DTYPE record")
+        """(Re)start the firmware with a configuration (a record of ``self.firmware.config_dtype``)."""
+        if config.dtype != self.firmware.config_dtype:
+            raise TypeError("config must be a record of the firmware's config dtype")
         self.earlier_steps += self.steps
         self.steps = 0
         self._reset_impl(config)

@@ -9,7 +9,6 @@ from pathlib import Path
 import numpy as np
 
 from ffr_link.abi import (
-    CONFIG_DTYPE,
     FirmwareLayoutError,
     LibraryLayout,
     check_layout,
@@ -45,7 +44,7 @@ def load_library(path: str) -> tuple[ctypes.CDLL, LibraryLayout]:
     except OSError as exc:
         raise LinkError(f"firmware library {p}: cannot be loaded: {exc}") from None
     try:
-        layout = read_layout(lib)
+        layout = read_layout(lib, str(p))
     except AttributeError as exc:
         raise FirmwareLayoutError(f"{p}: not an ffr firmware library ({exc})") from None
     check_layout(layout, str(p))
@@ -54,17 +53,24 @@ def load_library(path: str) -> tuple[ctypes.CDLL, LibraryLayout]:
     lib.ffr_init.restype = None
     lib.ffr_step.argtypes = [vp, vp, vp]
     lib.ffr_step.restype = None
-    lib.ffr_step_many.argtypes = [vp, vp, vp, ctypes.c_uint32]
-    lib.ffr_step_many.restype = None
+    if hasattr(lib, "ffr_step_many"):  # our firmware's extra: used where present, never required
+        lib.ffr_step_many.argtypes = [vp, vp, vp, ctypes.c_uint32]
+        lib.ffr_step_many.restype = None
     lib.ffr_config_default.argtypes = [vp]
     lib.ffr_config_default.restype = None
     return lib, layout
 
 
+def firmware_info(path: str | None = None) -> LibraryLayout:
+    """What the firmware library (``path``, else $FFR_FIRMWARE_LIB, else ours) says about itself:
+    its config dtype, state and failure names, name and layout hash."""
+    return load_library(str(library_path(path)))[1]
+
+
 def default_config(path: str | None = None) -> np.ndarray:
-    """The firmware's own defaults (ffr_config_default) as a CONFIG_DTYPE record."""
-    lib, _ = load_library(str(library_path(path)))
-    cfg = np.zeros((), dtype=CONFIG_DTYPE)
+    """The firmware's own defaults (ffr_config_default) as a record of its config dtype."""
+    lib, layout = load_library(str(library_path(path)))
+    cfg = np.zeros((), dtype=layout.config_dtype)
     lib.ffr_config_default(cfg.ctypes.data)
     return cfg
 
@@ -76,6 +82,7 @@ class CtypesLink(FirmwareLink):
         super().__init__()
         self.path = str(library_path(path))
         self.lib, self.layout = load_library(self.path)
+        self.firmware = self.layout
         size = self.layout.sizes[99]
         # 8-byte aligned storage for ffr_state_t
         self._state = np.zeros((size + 7) // 8, dtype=np.uint64)

@@ -16,7 +16,6 @@ from typing import Any
 import numpy as np
 
 from ffr_link import FirmwareLink
-from ffr_link.abi import STATE_NAMES
 from harness.loop import I_FAN, I_PWM_L, I_PWM_R, I_STATE, Trace, run_mission
 from harness.scenario import Scenario
 from harness.scoring import MissionResult
@@ -48,6 +47,10 @@ class B2BReport:
         }
 
 
+def _name(names: tuple[str, ...], code: int) -> str:
+    return names[code] if 0 <= code < len(names) else f"state {code}"
+
+
 def compare_traces(ref: Trace, tgt: Trace) -> tuple[bool, int | None, int, int, int, str]:
     """(identical, first differing tick, max |pwm| diff, fan and state mismatches, detail)."""
     n = min(len(ref.i), len(tgt.i))
@@ -60,9 +63,10 @@ def compare_traces(ref: Trace, tgt: Trace) -> tuple[bool, int | None, int, int, 
     state = int(np.count_nonzero(a[:, I_STATE] != b[:, I_STATE]))
     if len(diff_rows):
         k = int(diff_rows[0])
+        rn, tn = ref.names_of_states(), tgt.names_of_states()
         detail = (f"tick {k}: reference pwm {tuple(int(v) for v in a[k, [I_PWM_L, I_PWM_R]])} "
-                  f"{STATE_NAMES[a[k, I_STATE]]}, target pwm {tuple(int(v) for v in b[k, [I_PWM_L, I_PWM_R]])} "
-                  f"{STATE_NAMES[b[k, I_STATE]]}")
+                  f"{_name(rn, a[k, I_STATE])}, target pwm {tuple(int(v) for v in b[k, [I_PWM_L, I_PWM_R]])} "
+                  f"{_name(tn, b[k, I_STATE])}")
         return False, k, max_pwm, fan, state, detail
     if len(ref.i) != len(tgt.i):
         return False, n, max_pwm, fan, state, f"one run ended at tick {n}, the other ran on"

@@ -31,6 +31,7 @@ from harness.cli_args import (
     _setting,
     add_arena_options,
     firmware_link,
+    library_of_link,
 )
 from sim_plant.errors import FfrInputError
 
@@ -73,6 +74,8 @@ def build_parser() -> argparse.ArgumentParser:
     where(run)
     common(run)
     run.add_argument("--replay", metavar="FILE.html", help="write an interactive 3D replay (one offline HTML file)")
+    run.add_argument("--list-firmware-config", action="store_true",
+                     help="list the firmware's settable config fields (type, default) and exit")
     t1 = sub.add_parser("table1", help="the four-room missions beside the paper's Table 1")
     common(t1)
     t1.add_argument("--replay-dir", metavar="DIR", help="write each room's replay as DIR/replay_roomN.html")
@@ -123,9 +126,10 @@ def _scenarios(args: argparse.Namespace, rooms: Sequence[int | None]) -> list[An
             from sim_plant.sensors import load_noise_profile
             scn.noise = load_noise_profile(args.noise)
         if fw:
-            from ffr_link.ctypes_link import default_config
+            from ffr_link.ctypes_link import default_config, firmware_info
             from harness.firmware_config import apply_overrides
-            apply_overrides(default_config(), fw, "--set")  # validate early
+            lib = library_of_link(args.link)
+            apply_overrides(default_config(lib), fw, "--set", firmware_info(lib))  # validate early
             scn.firmware.update(fw)
         if ro:
             from sim_plant.robot import override
@@ -211,6 +215,20 @@ def _execute_b2b(args: argparse.Namespace) -> int:
     return EXIT_OK if rep.identical else EXIT_MISSION
 
 
+def _list_firmware_config(args: argparse.Namespace) -> int:
+    """``ffr run --list-firmware-config``: the loaded firmware's settable fields, from its library."""
+    from ffr_link.ctypes_link import firmware_info
+    from harness.firmware_config import describe_fields
+
+    fw = firmware_info(library_of_link(args.link))
+    print(f"# {fw.firmware_name} (contract {fw.version >> 16}.{fw.version & 0xFFFF}): inputs {fw.sizes[0]} bytes, "
+          f"outputs {fw.sizes[1]}, config {fw.sizes[2]}, state {fw.sizes[99]}; layout hash 0x{fw.layout_hash:08x}")
+    print("# config fields (--set firmware.NAME=V): name, type[count], kind, default (ffr_config_default)")
+    for line in describe_fields(fw):
+        print(line)
+    return EXIT_OK
+
+
 def _execute(args: argparse.Namespace) -> int:
     from ffr_link import LinkError, open_link
     from harness.loop import run_mission, warm_up
@@ -225,6 +243,8 @@ def _execute(args: argparse.Namespace) -> int:
             args.reference = firmware_link("ctypes:", args.firmware)  # the library is the reference side
         else:
             args.link = firmware_link(args.link, args.firmware)
+    if getattr(args, "list_firmware_config", False):
+        return _list_firmware_config(args)
     if args.command == "b2b":
         return _execute_b2b(args)
     if args.command == "sweep":

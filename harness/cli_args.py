@@ -122,6 +122,13 @@ def _furniture(text: str) -> int:
     return v
 
 
+def library_of_link(link: str) -> str | None:
+    """The firmware library whose config and names a link's missions use: ``ctypes:PATH``'s PATH;
+    for ``ctypes:`` and every wire link the host build ($FFR_FIRMWARE_LIB, else ours): None."""
+    scheme, _, rest = link.partition(":")
+    return rest or None if scheme == "ctypes" else None
+
+
 def firmware_link(link: str, firmware: str | None) -> str:
     """``--firmware LIB.so`` is ``--link ctypes:LIB.so``; with another link it is a usage error."""
     if not firmware or link == f"ctypes:{firmware}":  # (a sweep checks its arguments twice)

@@ -22,11 +22,10 @@ import numpy as np
 
 from ffr_link import FirmwareLink, open_link
 from ffr_link.abi import (
-    FAIL_NAMES,
+    FLAG_DONE,
+    FLAG_FAILED,
     INPUTS_DTYPE,
     OUTPUTS_DTYPE,
-    ST_DONE,
-    ST_FAILED,
 )
 from ffr_link.base import LinkError, new_inputs, new_outputs
 from ffr_link.ctypes_link import CtypesLink
@@ -56,7 +55,8 @@ _IN = {k: INPUTS_DTYPE.fields[k][1] for k in INPUTS_DTYPE.names}  # type: ignore
 _OUT = {k: OUTPUTS_DTYPE.fields[k][1] for k in OUTPUTS_DTYPE.names}  # type: ignore[index,union-attr]
 assert (_IN["t_ms"], _IN["seq"], _IN["enc"], _IN["ir_mv"], _IN["flame"], _IN["line"], _IN["start"]) == (
     0, 4, 8, 16, 26, 30, 31), "inputs layout changed: update _pack"
-assert (_OUT["pwm"], _OUT["fan"], _OUT["state"], _OUT["flags"], _OUT["step"]) == (4, 8, 9, 13, 14), \
+assert (_OUT["pwm"], _OUT["fan"], _OUT["state"], _OUT["flags"], _OUT["step"], _OUT["fail_code"]) == (
+    4, 8, 9, 13, 14, 15), \
     "outputs layout changed: update _record"
 
 # The detail of a run ended by knocking the candle over (outcome "collision", docs/sensors.md).
@@ -77,6 +77,16 @@ class Trace:
 
     f: np.ndarray
     i: np.ndarray
+    # the firmware's state names (index = the state column's code), from its library (ffr_names)
+    state_names: tuple[str, ...] = field(default=(), compare=False)
+
+    def names_of_states(self) -> tuple[str, ...]:
+        """The state names of the firmware that made this trace (else of the default firmware)."""
+        if self.state_names:
+            return self.state_names
+        from ffr_link.ctypes_link import firmware_info
+
+        return firmware_info().state_names
 
     @property
     def t(self) -> np.ndarray:
@@ -140,7 +150,7 @@ class Mission:
         candle = Candle(scn.candle[0], scn.candle[1], robot, scn.arena)
         sensors = SensorSuite(scn.arena, robot, candle, scn.noise, rng,
                               ir_sources=scn.ir_source_array())
-        cfg = build_config(robot, scn.firmware, scn.source)
+        cfg = build_config(robot, scn.firmware, scn.source, firmware=link.firmware)
         self.config = cfg
         if not compiled:
             warm_up(scn, record)  # before the reset: a board's watchdog runs from there
@@ -175,7 +185,7 @@ class Mission:
                 ev, np.zeros((N_CHANNELS, N_EV_STATE)), np.zeros(len(ev), dtype=np.int64),
                 *plant.kernel_args(), n_sub, cs, cp, period_ms, start_tick, max_ticks,
                 float(tm.find_limit_s), float(tm.return_limit_s), bool(scn.stop_on_contact),
-                ST_DONE, ST_FAILED)
+                FLAG_DONE, FLAG_FAILED)
             link.steps += k
             candle.unpack(cs)
             plant.apply(int(o16[2]), int(o16[3]), bool(out_bytes[8]))
@@ -183,7 +193,7 @@ class Mission:
                 done_t = t
             elif end == END_FAILED:
                 outcome = "failed"
-                detail = "firmware: " + FAIL_NAMES.get(int(out_bytes[15]), f"code {int(out_bytes[15])}")
+                detail = "firmware: " + link.firmware.fail_name(int(out_bytes[15]))
             elif end == END_CANDLE:
                 outcome, detail = "collision", CANDLE_KNOCKED
             elif end == END_CONTACT:
@@ -232,7 +242,7 @@ class Mission:
         result.score = contest_score(self.rules, outcome, ext, rooms_searched, plant.contacts, scn.modes,
                                      candle.knocked)
         n = k if record else 0
-        return result, Trace(tf[:n].copy(), ti[:n].copy())
+        return result, Trace(tf[:n].copy(), ti[:n].copy(), link.firmware.state_names)
 
 
     def _python_loop(self, plant: Plant, candle: Candle, sensors: SensorSuite,
@@ -257,7 +267,7 @@ class Mission:
         stuck_s = 0.0
         k = 0
         t = 0.0
-        state = 0
+        flags = 0
         while True:
             t_ms = k * period_ms
             t = t_ms / 1000.0
@@ -276,18 +286,18 @@ class Mission:
             pwm_l = int(o16[2])
             pwm_r = int(o16[3])
             fan = bool(out_bytes[8])
-            state = int(out_bytes[9])
+            flags = int(out_bytes[13])
             if record:
                 _record(tf, ti, k, t, plant.x, plant.y, plant.theta, o16, out_bytes, hw,
                         1 if plant.in_contact else 0)
             k += 1
-            if state == ST_DONE:
+            if flags & FLAG_DONE:  # the contract: a mission ends on DONE or FAILED in flags
                 done_t = t
                 break
-            if state == ST_FAILED:
+            if flags & FLAG_FAILED:
                 # the firmware gave up; if the flame is out it is still "extinguished" (below)
                 outcome = "failed"
-                detail = "firmware: " + FAIL_NAMES.get(int(out_bytes[15]), f"code {int(out_bytes[15])}")
+                detail = "firmware: " + link.firmware.fail_name(int(out_bytes[15]))
                 break
             plant.apply(pwm_l, pwm_r, fan)
             plant.integrate(period)

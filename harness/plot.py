@@ -13,12 +13,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.patches import Circle, Polygon  # noqa: E402
 
-from ffr_link.abi import STATE_NAMES  # noqa: E402
 from harness.atomic import atomic_path  # noqa: E402
 from harness.loop import I_CONTACT, I_STATE, Trace  # noqa: E402
 from harness.scenario import Scenario  # noqa: E402
 from harness.scoring import MissionResult  # noqa: E402
-from harness.state_colors import STATE_COLORS, UNKNOWN_STATE_COLOR  # noqa: E402
+from harness.state_colors import UNKNOWN_STATE_COLOR, state_colors  # noqa: E402
 
 
 def draw_mission(ax: plt.Axes, scn: Scenario, trace: Trace, result: MissionResult | None = None) -> None:
@@ -45,12 +44,14 @@ def draw_mission(ax: plt.Axes, scn: Scenario, trace: Trace, result: MissionResul
         starts = np.concatenate([[0], change])
         ends = np.concatenate([change, [len(states)]])
         seen: set[str] = set()
+        names = trace.names_of_states()
+        colors = state_colors(names)
         for s, e in zip(starts, ends, strict=True):
-            name = STATE_NAMES[states[s]] if states[s] < len(STATE_NAMES) else "?"
+            name = names[states[s]] if states[s] < len(names) else "?"
             seg = xy[max(s - 1, 0):e]
             label = name if name not in seen else None
             seen.add(name)
-            ax.plot(seg[:, 0], seg[:, 1], color=STATE_COLORS.get(name, UNKNOWN_STATE_COLOR), lw=1.6, zorder=5,
+            ax.plot(seg[:, 0], seg[:, 1], color=colors.get(name, UNKNOWN_STATE_COLOR), lw=1.6, zorder=5,
                     label=label)
         contact = trace.i[:, I_CONTACT] > 0
         hits = np.flatnonzero(np.diff(contact.astype(np.int8)) > 0) + 1

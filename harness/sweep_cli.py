@@ -85,8 +85,8 @@ def add_sweep_parser(sub: Any) -> None:
 
 def _check(args: argparse.Namespace) -> None:
     """Every setting and parameter value checked before any mission starts."""
-    from ffr_link.ctypes_link import default_config
-    from harness.cli_args import UsageError
+    from ffr_link.ctypes_link import default_config, firmware_info
+    from harness.cli_args import UsageError, library_of_link
     from harness.firmware_config import apply_overrides
     from sim_plant.arena import load_arena
     from sim_plant.robot import load_robot, override
@@ -120,9 +120,11 @@ def _check(args: argparse.Namespace) -> None:
     for r in args.rooms:
         arena.room(r)
     robot = load_robot(args.robot)
-    cfg = default_config()
+    lib = library_of_link(args.link)
+    fw_info = firmware_info(lib)
+    cfg = default_config(lib)
     fixed_fw = {k: v for g, k, v in args.settings if g == "firmware"}
-    apply_overrides(cfg, fixed_fw, "--set")
+    apply_overrides(cfg, fixed_fw, "--set", fw_info)
     for g, k, v in args.settings:
         if g == "robot":
             robot = override(robot, k, v, "--set")
@@ -132,7 +134,7 @@ def _check(args: argparse.Namespace) -> None:
     for p in args.param:
         for v in p.values:
             if p.group == "firmware":
-                apply_overrides(default_config(), {p.name: v}, "--param")
+                apply_overrides(default_config(lib), {p.name: v}, "--param", fw_info)
             else:
                 override(robot, p.name, v, "--param")
 

@@ -101,7 +101,7 @@ def mission_kernel(fn_step: int, st_ptr: int, in_ptr: int, out_ptr: int,
                    bbox: np.ndarray, n_sub: int,
                    cs: np.ndarray, cp: np.ndarray,
                    period_ms: int, start_tick: int, max_ticks: int, find_limit_s: float,
-                   return_limit_s: float, stop_on_contact: bool, st_done: int, st_failed: int,
+                   return_limit_s: float, stop_on_contact: bool, flag_done: int, flag_failed: int,
                    ) -> tuple[int, int, float]:
     """Run ticks until the mission ends; returns (END_* code, ticks run, time of the last tick)."""
     period = period_ms / 1000.0
@@ -128,14 +128,14 @@ def mission_kernel(fn_step: int, st_ptr: int, in_ptr: int, out_ptr: int,
         pwm_l = np.int64(o16[2])
         pwm_r = np.int64(o16[3])
         fan = o8[8] != 0
-        state = np.int64(o8[9])
+        flags = np.int64(o8[13])
         if record:
             _record(tf, ti, k, t, S[S_X], S[S_Y], S[S_TH], o16, o8, hw,
                     1 if S[S_IN_CONTACT] != 0.0 else 0)
         k += 1
-        if state == st_done:
+        if flags & flag_done:  # the contract: a mission ends on DONE or FAILED in outputs.flags
             return END_DONE, k, t
-        if state == st_failed:
+        if flags & flag_failed:
             return END_FAILED, k, t
         S[S_FAN] = 1.0 if fan else 0.0  # Plant.apply's fan
         if n_sub:

@@ -15,16 +15,15 @@ The C codec and this one are checked against each other by shared vectors
 
 from __future__ import annotations
 
+import os
 import sys
 from collections.abc import Iterator
 from enum import IntEnum
+from functools import lru_cache
 
 import numpy as np
 
 from ffr_link.abi import (
-    CONFIG_DTYPE,
-    CONFIG_FIELDS,
-    EXPECTED,
     INPUT_FIELDS,
     INPUTS_DTYPE,
     OUTPUT_FIELDS,
@@ -32,8 +31,6 @@ from ffr_link.abi import (
     S_CONFIG,
     S_INPUTS,
     S_OUTPUTS,
-    S_STEP,
-    STEP_FIELDS,
 )
 from hil_bridge import cobs
 from hil_bridge.crc import append_crc, crc16
@@ -59,15 +56,25 @@ _TYPES = {int(t): t for t in MsgType}
 def _packed(fields: list[tuple[str, str, int]]) -> np.dtype:
     spec: list[tuple] = []
     for name, code, count in fields:
-        base = STEP_WIRE if code == "step" else np.dtype("<" + code)
+        base = np.dtype("<" + code)
         spec.append((name, base, (count,)) if count > 1 else (name, base))
     return np.dtype(spec)  # no align: packed, as on the wire
 
 
-STEP_WIRE = _packed(STEP_FIELDS)
+def packed(native: np.dtype) -> np.dtype:
+    """The wire dtype of a struct dtype (a firmware's config read from its layout table): every
+    field in table order, sub-structs packed alike, no padding."""
+    spec: list[tuple] = []
+    for name in native.names or ():
+        dt = native.fields[name][0]  # type: ignore[index]
+        base, shape = (dt.subdtype if dt.subdtype is not None else (dt, ()))
+        base = packed(base) if base.names else base
+        spec.append((name, base, shape) if shape else (name, base))
+    return np.dtype(spec)
+
+
 INPUTS_WIRE = _packed(INPUT_FIELDS)
 OUTPUTS_WIRE = _packed(OUTPUT_FIELDS)
-CONFIG_WIRE = _packed(CONFIG_FIELDS)
 HELLO_WIRE = np.dtype([("proto", "<u2"), ("watchdog_ms", "<u2")])
 INFO_WIRE = np.dtype([("proto", "<u2"), ("watchdog_ms", "<u2"), ("fw_version", "<u4"), ("layout_hash", "<u4"),
                       ("inputs_size", "<u2"), ("outputs_size", "<u2"), ("config_size", "<u2"),
@@ -75,16 +82,10 @@ INFO_WIRE = np.dtype([("proto", "<u2"), ("watchdog_ms", "<u2"), ("fw_version", "
 READY_WIRE = np.dtype([("config_crc", "<u2"), ("reserved", "<u2")])
 ERROR_WIRE = np.dtype([("code", "u1"), ("detail", "u1"), ("reserved", "<u2"), ("seq", "<u4")])
 
-BODY_WIRE: dict[MsgType, np.dtype] = {
+_FIXED_WIRE: dict[MsgType, np.dtype] = {
     MsgType.ERROR: ERROR_WIRE, MsgType.OUTPUTS: OUTPUTS_WIRE, MsgType.INPUTS: INPUTS_WIRE,
-    MsgType.INFO: INFO_WIRE, MsgType.HELLO: HELLO_WIRE, MsgType.READY: READY_WIRE, MsgType.RESET: CONFIG_WIRE,
+    MsgType.INFO: INFO_WIRE, MsgType.HELLO: HELLO_WIRE, MsgType.READY: READY_WIRE,
 }
-# Messages that carry a firmware struct: decoded into the harness's (aligned) dtype.
-NATIVE: dict[MsgType, np.dtype] = {MsgType.OUTPUTS: OUTPUTS_DTYPE, MsgType.INPUTS: INPUTS_DTYPE,
-                                   MsgType.RESET: CONFIG_DTYPE}
-
-MSG_MAX = 1 + CONFIG_DTYPE.itemsize
-FRAME_MAX = MSG_MAX + 2 + (MSG_MAX + 2) // 254 + 2
 
 
 def _same_bytes(native: np.dtype, wire: np.dtype) -> bool:
@@ -100,49 +101,116 @@ def _same_bytes(native: np.dtype, wire: np.dtype) -> bool:
     return True
 
 
-RAW_OK = {t: _same_bytes(d, BODY_WIRE[t]) for t, d in NATIVE.items()}
+class Wire:
+    """The message bodies for one firmware: the fixed ones and the RESET body, its configuration
+    (read from its layout table; ``docs/contract.md``). ``wire_for(config_dtype)`` caches one per
+    firmware; the module's ``BODY_WIRE``, ``MSG_MAX``... are those of the default firmware
+    ($FFR_FIRMWARE_LIB, else ours), whose library is loaded on first use."""
+
+    def __init__(self, config: np.ndarray | np.dtype) -> None:
+        self.config_dtype = np.dtype(config)
+        self.config_wire = packed(self.config_dtype)
+        self.body_wire: dict[MsgType, np.dtype] = {**_FIXED_WIRE, MsgType.RESET: self.config_wire}
+        # messages that carry a firmware struct: decoded into the harness's (aligned) dtype
+        self.native: dict[MsgType, np.dtype] = {MsgType.OUTPUTS: OUTPUTS_DTYPE, MsgType.INPUTS: INPUTS_DTYPE,
+                                                MsgType.RESET: self.config_dtype}
+        self.raw_ok = {t: _same_bytes(d, self.body_wire[t]) for t, d in self.native.items()}
+        self.msg_max = 1 + self.config_dtype.itemsize
+        self.frame_max = self.msg_max + 2 + (self.msg_max + 2) // 254 + 2
 
 
-def body_size(t: int) -> int:
+_WIRES: dict[np.dtype, Wire] = {}
+_DEFAULT: dict[str, Wire] = {}  # by $FFR_FIRMWARE_LIB
+
+
+def wire_for(config: np.dtype | None = None) -> Wire:
+    """The bodies for a firmware's config dtype (None: the default firmware's)."""
+    if config is None:
+        key = os.environ.get("FFR_FIRMWARE_LIB", "")
+        w = _DEFAULT.get(key)
+        if w is None:
+            from ffr_link.ctypes_link import firmware_info
+
+            w = _DEFAULT[key] = wire_for(firmware_info().config_dtype)
+        return w
+    w = _WIRES.get(config)
+    if w is None:
+        w = _WIRES[config] = Wire(config)
+    return w
+
+
+def __getattr__(name: str) -> object:  # PEP 562: the default firmware's bodies and sizes, on first use
+    attrs = {"BODY_WIRE": "body_wire", "NATIVE": "native", "RAW_OK": "raw_ok", "MSG_MAX": "msg_max",
+             "FRAME_MAX": "frame_max", "CONFIG_WIRE": "config_wire", "CONFIG_DTYPE": "config_dtype"}
+    if name in attrs:
+        return getattr(wire_for(), attrs[name])
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def body_size(t: int, wire: Wire | None = None) -> int:
     mt = _TYPES.get(t)
-    return 0 if mt is None else BODY_WIRE[mt].itemsize
+    if mt is None:
+        return 0
+    if mt in _FIXED_WIRE:
+        return _FIXED_WIRE[mt].itemsize
+    return (wire or wire_for()).body_wire[mt].itemsize
 
 
-def wire_size(struct_id: int) -> int:
-    return {S_INPUTS: INPUTS_WIRE, S_OUTPUTS: OUTPUTS_WIRE, S_CONFIG: CONFIG_WIRE, S_STEP: STEP_WIRE}[
-        struct_id].itemsize
+def wire_size(struct_id: int, wire: Wire | None = None) -> int:
+    if struct_id == S_CONFIG:
+        return (wire or wire_for()).config_wire.itemsize
+    return {S_INPUTS: INPUTS_WIRE, S_OUTPUTS: OUTPUTS_WIRE}[struct_id].itemsize
+
+
+_NATIVE_FIXED = {MsgType.OUTPUTS: OUTPUTS_DTYPE, MsgType.INPUTS: INPUTS_DTYPE}
+
+
+@lru_cache(maxsize=64)
+def _raw_ok(native: np.dtype, wire: np.dtype) -> bool:
+    return native == wire or _same_bytes(native, wire)
 
 
 def encode_msg(t: MsgType, rec: np.ndarray) -> bytes:
-    """Type byte + body from a record of the body's wire dtype (or the native struct dtype)."""
-    wire = BODY_WIRE[t]
-    if rec.dtype == wire or RAW_OK.get(t, False) and rec.dtype == NATIVE[t]:
+    """Type byte + body from a record of the body's wire dtype or the native struct dtype; a RESET
+    from a record of any firmware's config dtype (packed by its own fields)."""
+    if t == MsgType.RESET:
+        if not rec.dtype.names:
+            raise TypeError(f"{t.name}: record of dtype {rec.dtype} cannot be encoded")
+        native, wire = rec.dtype, packed(rec.dtype)
+    else:
+        wire, native = _FIXED_WIRE[t], _NATIVE_FIXED.get(t, _FIXED_WIRE[t])
+    if rec.dtype == wire or rec.dtype == native and _raw_ok(native, wire):
         return bytes((int(t),)) + rec.tobytes()
-    if t in NATIVE and rec.dtype == NATIVE[t]:
+    if rec.dtype == native:
         return bytes((int(t),)) + np.asarray(rec).astype(wire).tobytes()  # field by field, by position
     raise TypeError(f"{t.name}: record of dtype {rec.dtype} cannot be encoded")
 
 
-def decode_msg(msg: bytes) -> tuple[MsgType, np.ndarray]:
-    """Type byte + body -> (type, 0-d record: the native struct dtype where there is one)."""
+def decode_msg(msg: bytes, wire_bodies: Wire | None = None) -> tuple[MsgType, np.ndarray]:
+    """Type byte + body -> (type, 0-d record: the native struct dtype where there is one); a RESET
+    by ``wire_bodies`` (default: the default firmware's)."""
     if len(msg) < 1:
         raise DecodeError(Status.SHORT, "empty message")
     t = _TYPES.get(msg[0])
     if t is None:
         raise DecodeError(Status.TYPE, f"unknown message type {msg[0]}")
-    wire = BODY_WIRE[t]
+    w = (wire_bodies or wire_for()) if t == MsgType.RESET else None
+    wire = _FIXED_WIRE[t] if w is None else w.body_wire[t]
     if len(msg) != 1 + wire.itemsize:
         raise DecodeError(Status.LENGTH, f"{t.name}: body of {len(msg) - 1} bytes, {wire.itemsize} expected")
     rec = np.frombuffer(msg, dtype=wire, count=1, offset=1).reshape(())
-    if t in NATIVE:
-        native = NATIVE[t]
-        rec = rec.copy().view(native) if RAW_OK[t] else rec.astype(native)
+    native = _NATIVE_FIXED.get(t) if w is None else w.config_dtype
+    if native is not None:
+        rec = rec.copy().view(native) if _raw_ok(native, wire) else rec.astype(native)
     return t, rec.copy()
 
 
 def record(t: MsgType, **fields: int) -> np.ndarray:
     """A body record of type t with the given fields (the rest zero)."""
-    rec = np.zeros((), dtype=NATIVE.get(t, BODY_WIRE[t]))
+    native = _NATIVE_FIXED.get(t)
+    if t == MsgType.RESET:
+        native = wire_for().config_dtype
+    rec = np.zeros((), dtype=native if native is not None else _FIXED_WIRE[t])
     for k, v in fields.items():
         rec[k] = v
     return rec
@@ -150,8 +218,8 @@ def record(t: MsgType, **fields: int) -> np.ndarray:
 
 # ---- serial frames ---------------------------------------------------------------------------------------------
 def frame_encode(msg: bytes) -> bytes:
-    if not 1 <= len(msg) <= MSG_MAX:
-        raise ValueError(f"message of {len(msg)} bytes (1..{MSG_MAX})")
+    if not 1 <= len(msg) <= wire_for().msg_max:
+        raise ValueError(f"message of {len(msg)} bytes (1..{wire_for().msg_max})")
     return cobs.encode(append_crc(msg)) + b"\x00"
 
 
@@ -159,9 +227,9 @@ def frame_decode(frame: bytes) -> bytes:
     """One frame without its delimiter -> the message; DecodeError with the C codec's status otherwise."""
     if len(frame) < 4:
         raise DecodeError(Status.SHORT, f"frame of {len(frame)} bytes")
-    if len(frame) > FRAME_MAX:
-        raise DecodeError(Status.LONG, f"frame of {len(frame)} bytes (at most {FRAME_MAX})")
-    data = cobs.decode(frame, cap=MSG_MAX + 2)  # the buffer ffr_frame_decode's callers give it
+    if len(frame) > wire_for().frame_max:
+        raise DecodeError(Status.LONG, f"frame of {len(frame)} bytes (at most {wire_for().frame_max})")
+    data = cobs.decode(frame, cap=wire_for().msg_max + 2)  # the buffer ffr_frame_decode's callers give it
     if len(data) < 3:
         raise DecodeError(Status.SHORT, f"{len(data)} bytes after COBS")
     if crc16(data) != 0:
@@ -178,16 +246,16 @@ class Deframer:
     def push(self, data: bytes) -> Iterator[bytes | DecodeError]:
         self._buf += data
         if 0 not in data:
-            if len(self._buf) > FRAME_MAX:  # keep only the knowledge that it is too long
-                del self._buf[FRAME_MAX + 1:]
+            if len(self._buf) > wire_for().frame_max:  # keep only the knowledge that it is too long
+                del self._buf[wire_for().frame_max + 1:]
             return
         *frames, rest = bytes(self._buf).split(b"\x00")
         self._buf = bytearray(rest)
         for f in frames:
             if not f:
                 continue  # idle delimiters
-            if len(f) > FRAME_MAX:
-                yield DecodeError(Status.LONG, f"frame of more than {FRAME_MAX} bytes")
+            if len(f) > wire_for().frame_max:
+                yield DecodeError(Status.LONG, f"frame of more than {wire_for().frame_max} bytes")
             else:
                 yield f
 
@@ -286,30 +354,10 @@ class CanReassembler:
         return msg[:-2]
 
 
-# ---- the layout hash, computed from the harness's own view of the structs -------------------------------------
-_TYPE_IDS = {"u1": 1, "i2": 2, "u2": 3, "i4": 4, "u4": 5, "f4": 6, "step": 0}
-_TABLE_ORDER = (S_INPUTS, S_OUTPUTS, S_STEP, S_CONFIG)  # the order of layout.c's table
-
-
+# ---- the layout hash a board must report ----------------------------------------------------------------------
 def layout_hash() -> int:
-    """FNV-1a as ``ffr_layout_hash()``, over the harness's dtypes: what a board must report."""
-    h = 2166136261
+    """``ffr_layout_hash()`` of the host build ($FFR_FIRMWARE_LIB, else ours): a board must run the
+    same firmware and report the same hash in its INFO (docs/contract.md, "Handshake")."""
+    from ffr_link.ctypes_link import firmware_info
 
-    def fnv(v: int, nbytes: int) -> None:
-        nonlocal h
-        for i in range(nbytes):
-            h ^= (v >> (8 * i)) & 0xFF
-            h = (h * 16777619) & 0xFFFFFFFF
-
-    for sid in _TABLE_ORDER:
-        fields, dtype = EXPECTED[sid]
-        for name, code, count in fields:
-            for ch in name.encode():
-                fnv(ch, 1)
-            fnv(sid, 2)
-            fnv(_TYPE_IDS[code], 2)
-            fnv(dtype.fields[name][1], 2)  # type: ignore[index]
-            fnv(count, 2)
-    for sid in (S_INPUTS, S_OUTPUTS, S_CONFIG, S_STEP):
-        fnv(EXPECTED[sid][1].itemsize, 4)
-    return h
+    return firmware_info().layout_hash

@@ -18,7 +18,7 @@ from abc import abstractmethod
 
 import numpy as np
 
-from ffr_link.abi import INPUTS_DTYPE
+from ffr_link.abi import CONTRACT_MAJOR, INPUTS_DTYPE
 from ffr_link.base import FirmwareLink, LinkError
 from hil_bridge import codec
 from hil_bridge.codec import MsgType
@@ -26,7 +26,7 @@ from hil_bridge.crc import crc16
 from hil_bridge.errors import DecodeError, ErrCode, Status
 from hil_bridge.options import WireOptions
 
-FW_VERSION_MAJOR = 1  # the firmware API this harness speaks (FFR_VERSION_MAJOR)
+FW_VERSION_MAJOR = CONTRACT_MAJOR  # the firmware contract this harness speaks (FFR_CONTRACT_MAJOR)
 _HANDSHAKE_TRY_S = 0.25  # first wait for INFO / READY (a config is 650 bytes: 60 ms at 115200 baud)
 # A RESET is 82 classic CAN frames: where 2% of frames are lost, one in five gets through whole,
 # so HELLO and RESET may be sent many times; handshake_timeout_s still bounds the wait.
@@ -48,7 +48,7 @@ class WireLink(FirmwareLink):
         self.info: np.ndarray | None = None
         self._in_msg = bytearray(1 + INPUTS_DTYPE.itemsize)
         self._in_msg[0] = int(MsgType.INPUTS)
-        self._raw_inputs = codec.RAW_OK[MsgType.INPUTS]
+        self._raw_inputs = codec._raw_ok(INPUTS_DTYPE, codec.INPUTS_WIRE)
         self._t_ms = 0
         self._tick: int | None = None  # None: handshake or reset
 
@@ -176,9 +176,11 @@ class WireLink(FirmwareLink):
         _, info = codec.decode_msg(reply)
         ver = int(info["fw_version"])
         major, minor = ver >> 16, ver & 0xFFFF
-        want_hash = codec.layout_hash()
+        # the board runs the host build's firmware: the same hash (layout, names, firmware name)
+        want_hash = self.firmware.layout_hash
         sizes = (int(info["inputs_size"]), int(info["outputs_size"]), int(info["config_size"]))
-        want_sizes = tuple(codec.BODY_WIRE[t].itemsize for t in (MsgType.INPUTS, MsgType.OUTPUTS, MsgType.RESET))
+        wire = codec.wire_for(self.firmware.config_dtype)
+        want_sizes = tuple(wire.body_wire[t].itemsize for t in (MsgType.INPUTS, MsgType.OUTPUTS, MsgType.RESET))
         if int(info["proto"]) != codec.PROTO_VERSION:
             raise LinkError(f"{self.url}: {self.side} speaks protocol {int(info['proto'])}, "
                             f"the harness {codec.PROTO_VERSION}: refused")
@@ -186,7 +188,8 @@ class WireLink(FirmwareLink):
             raise LinkError(
                 f"{self.url}: {self.side} firmware {major}.{minor} with layout hash 0x{int(info['layout_hash']):08x} "
                 f"(sizes {sizes}) does not match the harness's {FW_VERSION_MAJOR}.x, 0x{want_hash:08x} "
-                f"{want_sizes}: refused; build the board from this tree")
+                f"{want_sizes} ({self.firmware.firmware_name}): refused; build the board from the same "
+                f"firmware as the host library")
         self.info = info
         return info
 

@@ -84,21 +84,32 @@ static void store(uint8_t *p, uint16_t type, uint32_t v)
     }
 }
 
+/* A struct the table describes: the I/O, the configuration, a firmware-own sub-struct. */
+static int known_struct(uint32_t struct_id)
+{
+    return (struct_id <= FFR_S_CONFIG || (struct_id >= FFR_S_OWN && struct_id <= 255u && struct_id != FFR_S_STATE)) &&
+           ffr_sizeof(struct_id) != 0u;
+}
+
 size_t ffr_wire_size(uint32_t struct_id)
 {
     uint32_t n = 0;
     uint32_t i;
     size_t total = 0;
     const ffr_field_t *f = ffr_layout(&n);
-    if (struct_id > FFR_S_STEP) {
+    if (!known_struct(struct_id)) {
         return 0u;
     }
     for (i = 0; i < n; ++i) {
         if (f[i].struct_id != struct_id) {
             continue;
         }
-        if (f[i].type == 0u) {
-            total += (size_t)f[i].count * ffr_wire_size(FFR_S_STEP);
+        if (FFR_T_BASE(f[i].type) == FFR_T_STRUCT) {
+            uint32_t sub = FFR_T_SUBSTRUCT(f[i].type);
+            if (sub < FFR_S_OWN) {
+                return 0u; /* only firmware-own sub-structs nest: no loops */
+            }
+            total += (size_t)f[i].count * ffr_wire_size(sub);
         } else {
             total += (size_t)f[i].count * type_size(f[i].type);
         }
@@ -121,9 +132,10 @@ static size_t xfer(uint32_t struct_id, uint8_t *st, const uint8_t *cst, uint8_t 
             continue;
         }
         for (k = 0; k < f[i].count; ++k) {
-            if (f[i].type == 0u) { /* an array of route steps */
-                size_t at = (size_t)f[i].offset + (size_t)k * ffr_sizeof(FFR_S_STEP);
-                size_t got = xfer(FFR_S_STEP, st != NULL ? st + at : NULL, cst != NULL ? cst + at : NULL,
+            if (FFR_T_BASE(f[i].type) == FFR_T_STRUCT) { /* an array of a firmware-own sub-struct */
+                uint32_t sub = FFR_T_SUBSTRUCT(f[i].type);
+                size_t at = (size_t)f[i].offset + (size_t)k * ffr_sizeof(sub);
+                size_t got = sub < FFR_S_OWN ? 0u : xfer(sub, st != NULL ? st + at : NULL, cst != NULL ? cst + at : NULL,
                                   wire != NULL ? wire + w : NULL, cwire != NULL ? cwire + w : NULL, cap - w);
                 if (got == 0u) {
                     return 0u;
@@ -147,7 +159,7 @@ static size_t xfer(uint32_t struct_id, uint8_t *st, const uint8_t *cst, uint8_t 
 
 size_t ffr_wire_encode(uint32_t struct_id, const void *s, uint8_t *buf, size_t cap)
 {
-    if (s == NULL || buf == NULL || struct_id > FFR_S_STEP || cap < ffr_wire_size(struct_id)) {
+    if (s == NULL || buf == NULL || !known_struct(struct_id) || cap < ffr_wire_size(struct_id)) {
         return 0u;
     }
     return xfer(struct_id, NULL, (const uint8_t *)s, buf, NULL, cap);
@@ -156,7 +168,7 @@ size_t ffr_wire_encode(uint32_t struct_id, const void *s, uint8_t *buf, size_t c
 size_t ffr_wire_decode(uint32_t struct_id, const uint8_t *buf, size_t len, void *s)
 {
     size_t need = ffr_wire_size(struct_id);
-    if (s == NULL || buf == NULL || struct_id > FFR_S_STEP || len != need) {
+    if (s == NULL || buf == NULL || !known_struct(struct_id) || need == 0u || len != need) {
         return 0u;
     }
     return xfer(struct_id, (uint8_t *)s, NULL, NULL, buf, len);

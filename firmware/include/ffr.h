@@ -9,23 +9,26 @@
  *   ffr_init(&st, &cfg);
  *   every tick: fill ffr_inputs_t, ffr_step(&st, &in, &out), apply out.
  *
- * The Python harness mirrors the three I/O structs; ffr_layout() describes
- * every field (name, offset, type) so a mismatched build is refused at load.
+ * The I/O structs, the layout self-description and the functions every
+ * firmware exports are the contract's (ffr_contract.h, docs/contract.md);
+ * this header completes our own configuration and state and adds our extras.
  */
 #ifndef FFR_H
 #define FFR_H
 
 #include <stdint.h>
 
+#include "ffr_contract.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#define FFR_VERSION_MAJOR 1u
-#define FFR_VERSION_MINOR 0u
+/* Our firmware's name and release (ffr_firmware_name()); ffr_version() is the
+ * contract's version (ffr_contract.h). */
+#define FFR_FIRMWARE_NAME "ffr-reference 1.1"
 
-/* IR rangers, in the order of ffr_inputs_t.ir_mv (the paper's Fig. 6). */
-enum { FFR_IR_CF = 0, FFR_IR_LF = 1, FFR_IR_RF = 2, FFR_IR_LR = 3, FFR_IR_RR = 4, FFR_IR_COUNT = 5 };
+/* The IR rangers' order (FFR_IR_CF ...) is the contract's (the paper's Fig. 6). */
 enum { FFR_LEFT = 0, FFR_RIGHT = 1 };
 
 /* ------------------------------------------------------------------ */
@@ -72,7 +75,7 @@ enum { FFR_HOME_WALL_LEFT = 0, FFR_HOME_WALL_RIGHT = 1, FFR_HOME_WALL_ANY = 2, F
 /* ------------------------------------------------------------------ */
 /* Configuration: everything a student would tune.                      */
 /* ------------------------------------------------------------------ */
-typedef struct {
+struct ffr_config {
     /* geometry */
     float wheel_radius_mm;       /* drive wheel (sprocket) radius            */
     float track_width_mm;        /* distance between the drive wheels        */
@@ -150,21 +153,11 @@ typedef struct {
 
     ffr_step_t route[FFR_ROUTE_MAX];
     uint8_t return_start[FFR_ROOMS_MAX]; /* route index of the way home from room k+1 */
-} ffr_config_t;
+};
 
 /* ------------------------------------------------------------------ */
-/* One tick of inputs and outputs (hardware units).                     */
+/* Our states (ffr_outputs_t.state; names: ffr_names(FFR_NAMES_STATE)).  */
 /* ------------------------------------------------------------------ */
-typedef struct {
-    uint32_t t_ms;               /* tick time                                  */
-    uint32_t seq;                /* sequence number, echoed in the outputs     */
-    int32_t enc[2];              /* cumulative encoder counts, left, right     */
-    uint16_t ir_mv[FFR_IR_COUNT];/* GP2D12 outputs, mV                         */
-    uint16_t flame[2];           /* flame sensors, ADC counts, left, right     */
-    uint8_t line;                /* 1 = white under the line sensor            */
-    uint8_t start;               /* 1 = go                                     */
-} ffr_inputs_t;
-
 typedef enum {
     FFR_ST_IDLE = 0,
     FFR_ST_FOLLOW = 1,
@@ -183,29 +176,6 @@ typedef enum {
     FFR_ST_ORIENT = 14, /* at home: a turn in place to learn which way it faces (home_orient.c) */
     FFR_ST_COUNT = 15
 } ffr_state_code_t;
-
-#define FFR_FLAG_FLAME_SEEN 0x01u
-#define FFR_FLAG_EXTINGUISHED 0x02u
-#define FFR_FLAG_IN_ROOM 0x04u
-#define FFR_FLAG_DONE 0x08u
-#define FFR_FLAG_FAILED 0x10u
-
-typedef struct {
-    uint32_t seq;                /* = inputs.seq                               */
-    int16_t pwm[2];              /* per mille, left, right                     */
-    uint8_t fan;                 /* 1 = fans on                                */
-    uint8_t state;               /* ffr_state_code_t                           */
-    uint8_t room;                /* room being searched (0 = none)             */
-    uint8_t rooms_searched;
-    uint8_t line_count;          /* white lines crossed                        */
-    uint8_t flags;               /* FFR_FLAG_*                                 */
-    uint8_t step;                /* route program counter                      */
-    uint8_t fail_code;           /* why FAILED, 0 otherwise                    */
-    int16_t odo_x_mm;            /* odometry estimate, start frame             */
-    int16_t odo_y_mm;
-    int16_t odo_heading_cdeg;
-    int16_t reserved;
-} ffr_outputs_t;
 
 /* ------------------------------------------------------------------ */
 /* Behaviour states (one per file in src/).                             */
@@ -350,7 +320,7 @@ typedef struct {
     float bin_y_mm[FFR_ORIENT_BINS];
 } ffr_home_orient_t;
 
-typedef struct {
+struct ffr_state {
     ffr_config_t cfg;
     ffr_odometry_t odo;
     ffr_speed_ctl_t speed;
@@ -376,7 +346,7 @@ typedef struct {
     float cmd_w_rad_s;
     float flame_ema;               /* both flame sensors, slowly filtered     */
     float flame_dark;              /* the lowest of that: no flame in view    */
-} ffr_state_t;
+};
 
 /* Failure codes in ffr_outputs_t.fail_code. */
 enum {
@@ -389,30 +359,16 @@ enum {
 };
 
 /* ------------------------------------------------------------------ */
-/* API                                                                  */
+/* API: the contract's functions (ffr_contract.h) and our extras        */
 /* ------------------------------------------------------------------ */
-void ffr_config_default(ffr_config_t *cfg);
-void ffr_init(ffr_state_t *st, const ffr_config_t *cfg);
-void ffr_step(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out);
-/* Batch step for sweeps: n independent robots. */
+/* Batch step for sweeps: n independent robots (our extra; the harness uses
+ * it when a library has it and never requires it). */
 void ffr_step_many(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out, uint32_t n);
 
-/* Layout self-description. */
-typedef enum { FFR_T_U8 = 1, FFR_T_I16 = 2, FFR_T_U16 = 3, FFR_T_I32 = 4, FFR_T_U32 = 5, FFR_T_F32 = 6 } ffr_type_t;
-typedef enum { FFR_S_INPUTS = 0, FFR_S_OUTPUTS = 1, FFR_S_CONFIG = 2, FFR_S_STEP = 3 } ffr_struct_id_t;
-
-typedef struct {
-    const char *name;
-    uint16_t struct_id; /* ffr_struct_id_t */
-    uint16_t type;      /* ffr_type_t      */
-    uint16_t offset;
-    uint16_t count;     /* array length (1 for scalars) */
-} ffr_field_t;
-
-uint32_t ffr_version(void);                  /* major << 16 | minor          */
-uint32_t ffr_sizeof(uint32_t struct_id);     /* 0 for an unknown id; 99 = state */
-const ffr_field_t *ffr_layout(uint32_t *count);
-uint32_t ffr_layout_hash(void);              /* FNV-1a over the layout table */
+/* Our sub-struct in the layout table (the route program's steps) and our own
+ * name tables (index = the code): route ops, sides, events. */
+enum { FFR_S_ROUTE_STEP = FFR_S_OWN };
+enum { FFR_NAMES_OPS = FFR_NAMES_OWN, FFR_NAMES_SIDES = FFR_NAMES_OWN + 1, FFR_NAMES_EVENTS = FFR_NAMES_OWN + 2 };
 
 #ifdef __cplusplus
 }

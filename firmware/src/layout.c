@@ -1,111 +1,86 @@
 /*
- * The firmware describes its own I/O and configuration layout so the host
- * (ctypes) and the wire codec can check, at load time, that they agree with
- * this build field by field. The table is read-only data, not state.
+ * The firmware describes itself (the contract, ffr_contract.h): its I/O and
+ * configuration layout, so the harness can read and set the configuration by
+ * name and the wire codec can pack it; the names of its states, failure codes
+ * and route program's codes; its name; and a hash over all of it, which the
+ * wire handshake compares. The tables are read-only data, not state.
+ *
+ * Each row below exists once, in an X-macro list, and is expanded twice: into
+ * the table and into a compile-time check that the row's type code and count
+ * match the struct member (FFR_CHECK_* in ffr_contract.h).
  */
 #include <stddef.h>
 
+#include "ffr_contract_hash.h"
 #include "ffr_internal.h"
 
-#define FLD(sid, type_, member, t, n) {#member, (uint16_t)(sid), (uint16_t)(t), (uint16_t)offsetof(type_, member), (uint16_t)(n)}
-#define IN(m, t, n) FLD(FFR_S_INPUTS, ffr_inputs_t, m, t, n)
-#define OUT(m, t, n) FLD(FFR_S_OUTPUTS, ffr_outputs_t, m, t, n)
-#define CFG(m, t, n) FLD(FFR_S_CONFIG, ffr_config_t, m, t, n)
-#define STP(m, t, n) FLD(FFR_S_STEP, ffr_step_t, m, t, n)
+/* ffr_step_t: one route step (our sub-struct FFR_S_ROUTE_STEP). S = scalar row. */
+#define STEP_ROWS(S) \
+    S(op, U8) S(side, U8) S(event, U8) S(arg, U8) S(param, I16) S(reserved, I16)
+
+/* ffr_config_t. S = scalar, A = array of n, X = array of n sub-structs. */
+#define CONFIG_ROWS(S, A, X)                                                                          \
+    S(wheel_radius_mm, F32) S(track_width_mm, F32) S(encoder_ticks_per_rev, F32) S(body_front_mm, F32) \
+    S(body_half_width_mm, F32) A(ir_x_mm, F32, FFR_IR_COUNT) A(ir_y_mm, F32, FFR_IR_COUNT)             \
+    A(ir_angle_deg, F32, FFR_IR_COUNT) S(line_sensor_x_mm, F32) S(ir_k_mv_mm, F32)                    \
+    S(ir_offset_mv, F32) S(ir_d0_mm, F32) S(ir_min_mm, F32) S(ir_max_mm, F32) S(ir_min_mv, F32)        \
+    S(ff_gain_permille_per_mm_s, F32) S(ff_offset_permille, F32) S(speed_kp, F32) S(speed_ki, F32)    \
+    S(accel_mm_s2, F32) S(pwm_limit, I16) S(reserved0, I16) S(cruise_speed_mm_s, F32)                 \
+    S(room_speed_mm_s, F32) S(approach_speed_mm_s, F32) S(turn_rate_deg_s, F32)                       \
+    S(scan_rate_deg_s, F32) S(wall_target_mm, F32) S(wall_kp_deg_per_mm, F32) S(wall_max_deg, F32)    \
+    S(heading_kp, F32) S(wall_align_gain, F32) S(front_stop_mm, F32) S(front_slow_mm, F32)           \
+    S(open_mm, F32) S(open_confirm_mm, F32) S(wall_seen_mm, F32) S(hallway_half_mm, F32)              \
+    S(turn_tol_deg, F32) S(line_holdoff_mm, F32) S(room_line_max_mm, F32) S(room_entry_mm, F32)       \
+    S(room_exit_mm, F32) S(home_advance_mm, F32) S(flame_detect, F32) S(flame_out, F32)               \
+    S(flame_steer_deg, F32) S(approach_stop_mm, F32) S(guard_side_mm, F32) S(guard_stop_mm, F32)      \
+    S(fan_timeout_ms, U32) S(flame_out_confirm_ms, U32) S(verify_ms, U32) S(fan_attempts, U8)         \
+    S(scan_dir, U8) S(route_len, U8) S(home_wall_side, U8)                                            \
+    X(route, ffr_step_t, FFR_S_ROUTE_STEP, FFR_ROUTE_MAX) A(return_start, U8, FFR_ROOMS_MAX)
+
+/* The compile-time checks: a wrong type code or count in a row above fails the build. */
+#define STEP_CHECK(m, code) FFR_CHECK_ROW(ffr_step_t, m, code);
+#define CFG_CHECK(m, code) FFR_CHECK_ROW(ffr_config_t, m, code);
+#define CFG_CHECK_A(m, code, n) FFR_CHECK_ARRAY(ffr_config_t, m, code, n);
+#define CFG_CHECK_X(m, S, sid, n) FFR_CHECK_STRUCTS(ffr_config_t, m, S, n);
+STEP_ROWS(STEP_CHECK)
+CONFIG_ROWS(CFG_CHECK, CFG_CHECK_A, CFG_CHECK_X)
+FFR_STATIC_ASSERT(config_fits, sizeof(ffr_config_t) <= FFR_CONFIG_MAX);
+FFR_STATIC_ASSERT(state_fits, sizeof(ffr_state_t) <= FFR_STATE_MAX);
+
+#define STEP_ROW(m, code) FFR_ROW(FFR_S_ROUTE_STEP, ffr_step_t, m, code),
+#define CFG_ROW(m, code) FFR_ROW(FFR_S_CONFIG, ffr_config_t, m, code),
+#define CFG_ROW_A(m, code, n) FFR_ROW_ARRAY(FFR_S_CONFIG, ffr_config_t, m, code, n),
+#define CFG_ROW_X(m, S, sid, n) FFR_ROW_STRUCTS(FFR_S_CONFIG, ffr_config_t, m, sid, n),
 
 static const ffr_field_t k_layout[] = {
-    IN(t_ms, FFR_T_U32, 1),
-    IN(seq, FFR_T_U32, 1),
-    IN(enc, FFR_T_I32, 2),
-    IN(ir_mv, FFR_T_U16, FFR_IR_COUNT),
-    IN(flame, FFR_T_U16, 2),
-    IN(line, FFR_T_U8, 1),
-    IN(start, FFR_T_U8, 1),
-
-    OUT(seq, FFR_T_U32, 1),
-    OUT(pwm, FFR_T_I16, 2),
-    OUT(fan, FFR_T_U8, 1),
-    OUT(state, FFR_T_U8, 1),
-    OUT(room, FFR_T_U8, 1),
-    OUT(rooms_searched, FFR_T_U8, 1),
-    OUT(line_count, FFR_T_U8, 1),
-    OUT(flags, FFR_T_U8, 1),
-    OUT(step, FFR_T_U8, 1),
-    OUT(fail_code, FFR_T_U8, 1),
-    OUT(odo_x_mm, FFR_T_I16, 1),
-    OUT(odo_y_mm, FFR_T_I16, 1),
-    OUT(odo_heading_cdeg, FFR_T_I16, 1),
-    OUT(reserved, FFR_T_I16, 1),
-
-    STP(op, FFR_T_U8, 1),
-    STP(side, FFR_T_U8, 1),
-    STP(event, FFR_T_U8, 1),
-    STP(arg, FFR_T_U8, 1),
-    STP(param, FFR_T_I16, 1),
-    STP(reserved, FFR_T_I16, 1),
-
-    CFG(wheel_radius_mm, FFR_T_F32, 1),
-    CFG(track_width_mm, FFR_T_F32, 1),
-    CFG(encoder_ticks_per_rev, FFR_T_F32, 1),
-    CFG(body_front_mm, FFR_T_F32, 1),
-    CFG(body_half_width_mm, FFR_T_F32, 1),
-    CFG(ir_x_mm, FFR_T_F32, FFR_IR_COUNT),
-    CFG(ir_y_mm, FFR_T_F32, FFR_IR_COUNT),
-    CFG(ir_angle_deg, FFR_T_F32, FFR_IR_COUNT),
-    CFG(line_sensor_x_mm, FFR_T_F32, 1),
-    CFG(ir_k_mv_mm, FFR_T_F32, 1),
-    CFG(ir_offset_mv, FFR_T_F32, 1),
-    CFG(ir_d0_mm, FFR_T_F32, 1),
-    CFG(ir_min_mm, FFR_T_F32, 1),
-    CFG(ir_max_mm, FFR_T_F32, 1),
-    CFG(ir_min_mv, FFR_T_F32, 1),
-    CFG(ff_gain_permille_per_mm_s, FFR_T_F32, 1),
-    CFG(ff_offset_permille, FFR_T_F32, 1),
-    CFG(speed_kp, FFR_T_F32, 1),
-    CFG(speed_ki, FFR_T_F32, 1),
-    CFG(accel_mm_s2, FFR_T_F32, 1),
-    CFG(pwm_limit, FFR_T_I16, 1),
-    CFG(reserved0, FFR_T_I16, 1),
-    CFG(cruise_speed_mm_s, FFR_T_F32, 1),
-    CFG(room_speed_mm_s, FFR_T_F32, 1),
-    CFG(approach_speed_mm_s, FFR_T_F32, 1),
-    CFG(turn_rate_deg_s, FFR_T_F32, 1),
-    CFG(scan_rate_deg_s, FFR_T_F32, 1),
-    CFG(wall_target_mm, FFR_T_F32, 1),
-    CFG(wall_kp_deg_per_mm, FFR_T_F32, 1),
-    CFG(wall_max_deg, FFR_T_F32, 1),
-    CFG(heading_kp, FFR_T_F32, 1),
-    CFG(wall_align_gain, FFR_T_F32, 1),
-    CFG(front_stop_mm, FFR_T_F32, 1),
-    CFG(front_slow_mm, FFR_T_F32, 1),
-    CFG(open_mm, FFR_T_F32, 1),
-    CFG(open_confirm_mm, FFR_T_F32, 1),
-    CFG(wall_seen_mm, FFR_T_F32, 1),
-    CFG(hallway_half_mm, FFR_T_F32, 1),
-    CFG(turn_tol_deg, FFR_T_F32, 1),
-    CFG(line_holdoff_mm, FFR_T_F32, 1),
-    CFG(room_line_max_mm, FFR_T_F32, 1),
-    CFG(room_entry_mm, FFR_T_F32, 1),
-    CFG(room_exit_mm, FFR_T_F32, 1),
-    CFG(home_advance_mm, FFR_T_F32, 1),
-    CFG(flame_detect, FFR_T_F32, 1),
-    CFG(flame_out, FFR_T_F32, 1),
-    CFG(flame_steer_deg, FFR_T_F32, 1),
-    CFG(approach_stop_mm, FFR_T_F32, 1),
-    CFG(guard_side_mm, FFR_T_F32, 1),
-    CFG(guard_stop_mm, FFR_T_F32, 1),
-    CFG(fan_timeout_ms, FFR_T_U32, 1),
-    CFG(flame_out_confirm_ms, FFR_T_U32, 1),
-    CFG(verify_ms, FFR_T_U32, 1),
-    CFG(fan_attempts, FFR_T_U8, 1),
-    CFG(scan_dir, FFR_T_U8, 1),
-    CFG(route_len, FFR_T_U8, 1),
-    CFG(home_wall_side, FFR_T_U8, 1),
-    CFG(route, 0, FFR_ROUTE_MAX), /* type 0: an array of ffr_step_t */
-    CFG(return_start, FFR_T_U8, FFR_ROOMS_MAX),
+    FFR_IO_ROWS,
+    STEP_ROWS(STEP_ROW)
+    CONFIG_ROWS(CFG_ROW, CFG_ROW_A, CFG_ROW_X)
 };
 
-uint32_t ffr_version(void) { return (FFR_VERSION_MAJOR << 16) | FFR_VERSION_MINOR; }
+/* Names, index = code. */
+static const char *const k_state_names[] = {
+    "IDLE", "FOLLOW", "TURN", "FORWARD", "ENTER", "SCAN", "APPROACH", "EXTINGUISH",
+    "VERIFY", "TO_DOOR", "EXIT", "HOMING", "DONE", "FAILED", "ORIENT",
+};
+static const char *const k_fail_names[] = {
+    "", "no flame found", "fans did not put the flame out", "doorway line not found", "invalid route program",
+    "flame lost",
+};
+static const char *const k_op_names[] = {"END", "FOLLOW", "TURN", "FORWARD", "ROOM", "HOME"};
+static const char *const k_side_names[] = {"LEFT", "RIGHT", "NONE"};
+static const char *const k_event_names[] = {"FRONT", "OPEN_L", "OPEN_R", "LINE"};
+
+#define COUNT_OF(a) (sizeof(a) / sizeof((a)[0]))
+FFR_STATIC_ASSERT(state_names, COUNT_OF(k_state_names) == FFR_ST_COUNT);
+FFR_STATIC_ASSERT(fail_names, COUNT_OF(k_fail_names) == FFR_FAIL_LOST_FLAME + 1);
+FFR_STATIC_ASSERT(op_names, COUNT_OF(k_op_names) == FFR_OP_HOME + 1);
+FFR_STATIC_ASSERT(side_names, COUNT_OF(k_side_names) == FFR_SIDE_NONE + 1);
+FFR_STATIC_ASSERT(event_names, COUNT_OF(k_event_names) == FFR_EV_LINE + 1);
+
+uint32_t ffr_version(void) { return (FFR_CONTRACT_MAJOR << 16) | FFR_CONTRACT_MINOR; }
+
+const char *ffr_firmware_name(void) { return FFR_FIRMWARE_NAME; }
 
 uint32_t ffr_sizeof(uint32_t struct_id)
 {
@@ -116,9 +91,9 @@ uint32_t ffr_sizeof(uint32_t struct_id)
         return (uint32_t)sizeof(ffr_outputs_t);
     case FFR_S_CONFIG:
         return (uint32_t)sizeof(ffr_config_t);
-    case FFR_S_STEP:
+    case FFR_S_ROUTE_STEP:
         return (uint32_t)sizeof(ffr_step_t);
-    case 99u:
+    case FFR_S_STATE:
         return (uint32_t)sizeof(ffr_state_t);
     default:
         return 0u;
@@ -128,39 +103,44 @@ uint32_t ffr_sizeof(uint32_t struct_id)
 const ffr_field_t *ffr_layout(uint32_t *count)
 {
     if (count != NULL) {
-        *count = (uint32_t)(sizeof(k_layout) / sizeof(k_layout[0]));
+        *count = (uint32_t)COUNT_OF(k_layout);
     }
     return k_layout;
 }
 
-static uint32_t fnv(uint32_t h, uint32_t v, int bytes)
+const char *const *ffr_names(uint32_t kind, uint32_t *count)
 {
-    int i;
-    for (i = 0; i < bytes; ++i) {
-        h ^= (v >> (8 * i)) & 0xFFu;
-        h *= 16777619u;
+    const char *const *t = NULL;
+    uint32_t n = 0u;
+    switch (kind) {
+    case FFR_NAMES_STATE:
+        t = k_state_names;
+        n = (uint32_t)COUNT_OF(k_state_names);
+        break;
+    case FFR_NAMES_FAIL:
+        t = k_fail_names;
+        n = (uint32_t)COUNT_OF(k_fail_names);
+        break;
+    case FFR_NAMES_OPS:
+        t = k_op_names;
+        n = (uint32_t)COUNT_OF(k_op_names);
+        break;
+    case FFR_NAMES_SIDES:
+        t = k_side_names;
+        n = (uint32_t)COUNT_OF(k_side_names);
+        break;
+    case FFR_NAMES_EVENTS:
+        t = k_event_names;
+        n = (uint32_t)COUNT_OF(k_event_names);
+        break;
+    default:
+        break;
     }
-    return h;
+    if (count != NULL) {
+        *count = n;
+    }
+    return t;
 }
 
-uint32_t ffr_layout_hash(void)
-{
-    uint32_t h = 2166136261u;
-    uint32_t n;
-    uint32_t i;
-    const ffr_field_t *f = ffr_layout(&n);
-    for (i = 0; i < n; ++i) {
-        const char *c;
-        for (c = f[i].name; *c != '\0'; ++c) {
-            h = fnv(h, (uint32_t)(uint8_t)*c, 1);
-        }
-        h = fnv(h, f[i].struct_id, 2);
-        h = fnv(h, f[i].type, 2);
-        h = fnv(h, f[i].offset, 2);
-        h = fnv(h, f[i].count, 2);
-    }
-    for (i = 0; i < 4u; ++i) {
-        h = fnv(h, ffr_sizeof(i), 4);
-    }
-    return h;
-}
+/* The contract's recipe (ffr_contract_hash.h, docs/contract.md). */
+uint32_t ffr_layout_hash(void) { return ffr_contract_hash(); }

@@ -23,5 +23,5 @@ void suite_layout(void)
     CHECK(found_pwm);
     CHECK(ffr_layout_hash() == ffr_layout_hash());
     CHECK(ffr_layout_hash() != 0u);
-    CHECK(ffr_version() == ((FFR_VERSION_MAJOR << 16) | FFR_VERSION_MINOR));
+    CHECK(ffr_version() == ((FFR_CONTRACT_MAJOR << 16) | FFR_CONTRACT_MINOR));
 }

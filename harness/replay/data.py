@@ -19,11 +19,10 @@ from typing import Any
 
 import numpy as np
 
-from ffr_link.abi import STATE_NAMES
 from harness.loop import I_CONTACT, I_FAN, I_PWM_L, I_PWM_R, I_SENS, I_STATE, Trace
 from harness.scenario import Scenario
 from harness.scoring import MissionResult
-from harness.state_colors import STATE_COLORS
+from harness.state_colors import state_colors
 from sim_plant.robot import IR_NAMES, RobotParams
 from sim_plant.sensors.channels import CH_ENC_L, CH_ENC_R, CH_FLAME_L, CH_FLAME_R, CH_IR, CH_LINE
 from sim_plant.sensors.gp2d12 import D_FAR, D_PEAK, distance_to_mv
@@ -95,7 +94,7 @@ class ReplayData:
     robot: dict[str, Any]
     frames: dict[str, Any]
     charts: dict[str, Any]
-    states: list[str] = field(default_factory=lambda: list(STATE_NAMES))
+    states: list[str] = field(default_factory=list)  # the firmware's state names (index = code)
 
     @property
     def n_frames(self) -> int:
@@ -103,7 +102,7 @@ class ReplayData:
 
     def to_json(self) -> dict[str, Any]:
         return {"meta": self.meta, "scene": self.scene, "robot": self.robot, "frames": self.frames,
-                "charts": self.charts, "states": self.states, "state_colors": STATE_COLORS}
+                "charts": self.charts, "states": self.states, "state_colors": state_colors(self.states)}
 
 
 # -- meshes (body frame or arena frame, z up) --------------------------------
@@ -335,7 +334,7 @@ def build_replay(scn: Scenario, trace: Trace, result: MissionResult, fps: float 
         "ir_far_m": D_FAR,
     }
     return ReplayData(meta=meta, scene=scene_model(scn), robot=robot_model(scn.robot), frames=frames,
-                      charts=charts)
+                      charts=charts, states=list(trace.names_of_states()))
 
 
 def _state_paths(trace: Trace, min_step: float = 0.01) -> dict[str, dict[str, list[float | None]]]:
@@ -350,10 +349,11 @@ def _state_paths(trace: Trace, min_step: float = 0.01) -> dict[str, dict[str, li
             keep.append(n)
             last = xy[n]
     out: dict[str, dict[str, list[float | None]]] = {}
+    names = trace.names_of_states()
     prev_state = None
     for a, b in zip(keep[:-1], keep[1:], strict=True):
         s = int(states[b])
-        name = STATE_NAMES[s] if s < len(STATE_NAMES) else f"state {s}"
+        name = names[s] if s < len(names) else f"state {s}"
         seg = out.setdefault(name, {"x": [], "y": []})
         if prev_state != s and seg["x"]:
             seg["x"].append(None)

@@ -71,14 +71,18 @@ def test_crc_check_value_and_c_agree(c: CCodec) -> None:
     assert crc16(b"123456789") == CHECK == c.crc16(b"123456789") == 0x29B1
 
 
-def test_layout_hash_from_the_dtypes_matches_the_library() -> None:
+def test_layout_hash_is_the_library_s_and_wire_sizes_agree() -> None:
+    from ffr_link.abi import contract_hash
     from ffr_link.ctypes_link import library_path, load_library
 
     lib, layout = load_library(str(library_path()))
-    assert codec.layout_hash() == layout.layout_hash
+    assert codec.layout_hash() == layout.layout_hash == contract_hash(layout)  # the documented recipe
     lib.ffr_wire_size.restype = ctypes.c_size_t
-    for sid in range(4):
+    lib.ffr_wire_size.argtypes = [ctypes.c_uint32]
+    for sid in range(3):
         assert lib.ffr_wire_size(sid) == codec.wire_size(sid)
+    assert lib.ffr_wire_size(16) == 8  # our route step, a sub-struct of the config
+    assert lib.ffr_wire_size(99) == 0 and lib.ffr_wire_size(3) == 0  # the state; no such struct
 
 
 @FAST

@@ -57,7 +57,7 @@ class FakeBoard:
 
 
 def _info(**over: int) -> bytes:
-    fields = dict(proto=1, watchdog_ms=500, fw_version=1 << 16, layout_hash=codec.layout_hash(), inputs_size=32,
+    fields = dict(proto=1, watchdog_ms=500, fw_version=2 << 16, layout_hash=codec.layout_hash(), inputs_size=32,
                   outputs_size=24, config_size=codec.CONFIG_WIRE.itemsize)
     fields.update(over)
     return codec.frame_encode(codec.encode_msg(MsgType.INFO, codec.record(MsgType.INFO, **fields)))
@@ -83,7 +83,7 @@ def test_handshake_reports_the_boards_firmware(url: str) -> None:
         link.reset(_config())
         info = link.info  # type: ignore[attr-defined]
         assert int(info["layout_hash"]) == codec.layout_hash()
-        assert int(info["fw_version"]) >> 16 == 1 and int(info["inputs_size"]) == 32
+        assert int(info["fw_version"]) >> 16 == 2 and int(info["inputs_size"]) == 32
 
 
 def test_a_board_with_another_layout_is_refused(fake) -> None:
@@ -96,8 +96,8 @@ def test_a_board_with_another_layout_is_refused(fake) -> None:
 
 
 def test_a_board_with_another_major_version_is_refused(fake) -> None:
-    board = fake(lambda m: _info(fw_version=2 << 16) if m[0] == MsgType.HELLO else None)
-    with pytest.raises(LinkError, match=r"firmware 2\.0 .* refused"), \
+    board = fake(lambda m: _info(fw_version=1 << 16) if m[0] == MsgType.HELLO else None)
+    with pytest.raises(LinkError, match=r"firmware 1\.0 .* refused"), \
             open_link(f"serial:socket://127.0.0.1:{board.port}") as link:
         link.reset(_config())
 

@@ -8,11 +8,11 @@ import pytest
 
 from ffr_link import LinkError, open_link
 from ffr_link.abi import (
-    CONFIG_DTYPE,
     INPUTS_DTYPE,
     OUTPUTS_DTYPE,
     S_CONFIG,
     S_INPUTS,
+    S_OUTPUTS,
     FirmwareLayoutError,
     check_layout,
 )
@@ -23,26 +23,28 @@ def test_library_layout_matches() -> None:
     _, layout = load_library(str(DEFAULT_LIB))
     check_layout(layout, "lib")
     assert layout.sizes[S_INPUTS] == INPUTS_DTYPE.itemsize == 32
-    assert layout.sizes[S_CONFIG] == CONFIG_DTYPE.itemsize
+    assert layout.sizes[S_CONFIG] == layout.config_dtype.itemsize == 648
     assert OUTPUTS_DTYPE.itemsize == 24
-    assert layout.version >> 16 == 1
+    assert layout.version >> 16 == 2
 
 
 def _doctored(**change):
     _, layout = load_library(str(DEFAULT_LIB))
-    fields = list(layout.fields)
-    for i, f in enumerate(fields):
+    rows = list(layout.rows)
+    for i, f in enumerate(rows):
         if f[0] == change["sid"] and f[1] == change["name"]:
-            fields[i] = (f[0], change.get("rename", f[1]), change.get("code", f[2]),
-                         f[3] + change.get("shift", 0), f[4])
-    return dataclasses.replace(layout, fields=fields)
+            rows[i] = (f[0], change.get("rename", f[1]), change.get("type", f[2]),
+                       f[3] + change.get("shift", 0), f[4])
+    return dataclasses.replace(layout, rows=rows, dtypes={})
 
 
 @pytest.mark.parametrize(
     ("change", "expect"),
     [
         ({"sid": S_INPUTS, "name": "flame", "shift": 2}, "inputs.flame: offset"),
-        ({"sid": S_CONFIG, "name": "cruise_speed_mm_s", "code": "i4"}, "config.cruise_speed_mm_s: type"),
+        ({"sid": S_OUTPUTS, "name": "pwm", "type": 4}, "outputs.pwm: type i4"),
+        ({"sid": S_CONFIG, "name": "cruise_speed_mm_s", "type": 9}, "config.cruise_speed_mm_s: unknown type code 9"),
+        ({"sid": S_CONFIG, "name": "return_start", "shift": 640}, "config.return_start: 4 x 1 bytes at offset"),
         ({"sid": S_INPUTS, "name": "line", "rename": "lines"}, "inputs.line: the library has field 'lines'"),
     ],
 )

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from ffr_link.abi import STATE_NAMES
+from ffr_link.ctypes_link import firmware_info
 from harness.replay.browser import missing_reason, replay_page, show_time
 
 BACKGROUND = np.array([0x15, 0x17, 0x1A])  # the page's and the scene's background
@@ -140,7 +140,7 @@ def test_play_speed_and_pause(browser_page) -> None:
     page.wait_for_timeout(400)
     assert _js(page, "window.ffrReplay.t") == t  # paused: time stands
     page.wait_for_function(f"window.ffrReplay.renderedT === {t}")
-    assert page.inner_text("#ro-state") in STATE_NAMES
+    assert page.inner_text("#ro-state") in firmware_info().state_names
     page.select_option("#speed", "1")
 
 

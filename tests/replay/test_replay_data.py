@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from ffr_link.abi import STATE_NAMES
+from ffr_link.ctypes_link import firmware_info
 from harness.loop import I_FAN, I_SENS, I_STATE, N_F, N_I, Trace
 from harness.replay.data import (
     MV_AT_FAR,
@@ -29,7 +29,7 @@ def _trace(n: int, dt: float = 0.01) -> Trace:
     f[:, 1] = 0.5 + 0.2 * f[:, 0]
     f[:, 2] = 1.0
     i = np.zeros((n, N_I), dtype=np.int32)
-    i[:, I_STATE] = STATE_NAMES.index("FOLLOW")
+    i[:, I_STATE] = firmware_info().state_names.index("FOLLOW")
     i[:, I_SENS:I_SENS + 5] = 1000
     return Trace(f, i)
 
@@ -86,7 +86,7 @@ def test_frames_are_downsampled_and_follow_the_pose() -> None:
     assert len(data.charts["t"]) == 501
     assert all(len(fr[k]) == 201 for k in ("y", "theta", "fan", "state", "lit", "pwm_l", "enc_r"))
     assert all(len(col) == 201 for col in fr["ir_len"])
-    assert fr["state"][0] == STATE_NAMES.index("FOLLOW")
+    assert fr["state"][0] == firmware_info().state_names.index("FOLLOW")
 
 
 def test_flame_goes_out_at_the_extinguish_time() -> None:
@@ -155,8 +155,20 @@ def test_robot_model_matches_the_robot_file() -> None:
 def test_one_state_colour_table_serves_the_2d_picture_and_the_replay() -> None:
     import harness.plot
     import harness.replay.data
-    from harness.state_colors import STATE_COLORS
+    from harness.state_colors import STATE_COLORS, state_colors
 
-    assert harness.plot.STATE_COLORS is STATE_COLORS is harness.replay.data.STATE_COLORS
-    assert set(STATE_COLORS) == set(STATE_NAMES)
+    assert harness.plot.state_colors is state_colors is harness.replay.data.state_colors
+    assert set(STATE_COLORS) == set(firmware_info().state_names)
     assert len(set(STATE_COLORS.values())) == len(STATE_COLORS)  # every state told apart
+    assert state_colors(firmware_info().state_names) == STATE_COLORS
+
+
+def test_states_of_another_firmware_get_palette_colours_in_code_order() -> None:
+    from harness.state_colors import PALETTE, STATE_COLORS, state_colors
+
+    got = state_colors(["IDLE", "SEEK", "WALL_LEFT", "DONE", "SEEK"])
+    assert got == {"IDLE": STATE_COLORS["IDLE"], "SEEK": PALETTE[0], "WALL_LEFT": PALETTE[1],
+                   "DONE": STATE_COLORS["DONE"]}
+    assert not set(PALETTE) & set(STATE_COLORS.values())  # never mistaken for one of ours
+    many = state_colors([f"S{k}" for k in range(len(PALETTE) + 2)])
+    assert list(many.values())[len(PALETTE)] == PALETTE[0]  # cycles past the palette's end

@@ -50,7 +50,8 @@ def test_any_start_pose_finds_the_way(ffr_mission, room: int, pose) -> None:
     assert res.outcome == "home", res.detail
     assert res.wall_contacts == 0
     # it oriented itself first (state ORIENT), then ran the route
-    from ffr_link.abi import STATE_NAMES
+    from ffr_link.ctypes_link import firmware_info
+    STATE_NAMES = firmware_info().state_names  # noqa: N806
     states = trace.state
     assert states[1] == STATE_NAMES.index("ORIENT")
 

@@ -75,7 +75,7 @@ static void test_wire_struct(void)
     in.start = 1u;
     CHECK(ffr_wire_size(FFR_S_INPUTS) == 32u);
     CHECK(ffr_wire_size(FFR_S_OUTPUTS) == 24u);
-    CHECK(ffr_wire_size(FFR_S_STEP) == 8u);
+    CHECK(ffr_wire_size(FFR_S_ROUTE_STEP) == 8u);
     CHECK(ffr_wire_size(FFR_S_CONFIG) <= sizeof(ffr_config_t));
     CHECK(ffr_wire_encode(FFR_S_INPUTS, &in, buf, sizeof(buf)) == 32u);
     CHECK(buf[0] == 0x04u && buf[3] == 0x01u && buf[4] == 7u); /* little-endian */
