@@ -6,6 +6,7 @@
  */
 #include <stddef.h>
 
+#include "ffr_contract_hash.h"
 #include "wall_follower.h"
 
 void ffr_config_default(ffr_config_t *c)
@@ -71,87 +72,35 @@ void ffr_config_default(ffr_config_t *c)
     c->scan_attempts = 3u;
 }
 
-#define FLD(sid, type_, member, t, n) \
-    {#member, (uint16_t)(sid), (uint16_t)(t), (uint16_t)offsetof(type_, member), (uint16_t)(n)}
-#define IN(m, t, n) FLD(FFR_S_INPUTS, ffr_inputs_t, m, t, n)
-#define OUT(m, t, n) FLD(FFR_S_OUTPUTS, ffr_outputs_t, m, t, n)
-#define CFG(m, t, n) FLD(FFR_S_CONFIG, struct ffr_config, m, t, n)
-#define F32(m) CFG(m, FFR_T_F32, 1)
+/* The configuration's rows, once: the compiler checks each against its
+ * member (type, signedness, array length), and the same list makes the
+ * table ffr reads to set, list and check any field by name. Keep it in the
+ * order of struct ffr_config. */
+#define WF_CONFIG_ROWS(S, A) \
+    S(wheel_radius_mm, F32) S(track_width_mm, F32) S(encoder_ticks_per_rev, F32) \
+    S(body_front_mm, F32) S(body_half_width_mm, F32) A(ir_x_mm, F32, FFR_IR_COUNT) \
+    A(ir_y_mm, F32, FFR_IR_COUNT) A(ir_angle_deg, F32, FFR_IR_COUNT) S(line_sensor_x_mm, F32) \
+    S(ir_k_mv_mm, F32) S(ir_offset_mv, F32) S(ir_d0_mm, F32) S(ir_max_mm, F32) S(cruise_mm_s, F32) \
+    S(approach_mm_s, F32) S(turn_deg_s, F32) S(scan_deg_s, F32) S(accel_mm_s2, F32) \
+    S(pwm_per_mm_s, F32) S(pwm_offset, F32) S(pwm_kp, F32) S(wall_mm, F32) S(wall_kp, F32) \
+    S(angle_kp, F32) S(heading_kp, F32) S(max_yaw_deg_s, F32) S(front_mm, F32) S(open_mm, F32) \
+    S(corner_mm, F32) S(arc_max_deg, F32) S(start_turn_deg, F32) S(entry_mm, F32) \
+    S(line_holdoff_mm, F32) S(flame_detect, F32) S(flame_near, F32) S(flame_out, F32) \
+    S(flame_steer_deg_s, F32) S(approach_stop_mm, F32) S(guard_mm, F32) S(guard_kp, F32) \
+    S(home_zone_mm, F32) S(away_mm, F32) S(out_confirm_ms, U32) S(fan_max_ms, U32) \
+    S(mission_max_ms, U32) S(scan_attempts, U8) A(reserved, U8, 3)
 
-/* The contract's I/O rows, then this firmware's configuration: the config
- * descriptor table ffr reads to set, list and check fields by name. */
-static const ffr_field_t k_layout[] = {
-    IN(t_ms, FFR_T_U32, 1),
-    IN(seq, FFR_T_U32, 1),
-    IN(enc, FFR_T_I32, 2),
-    IN(ir_mv, FFR_T_U16, FFR_IR_COUNT),
-    IN(flame, FFR_T_U16, 2),
-    IN(line, FFR_T_U8, 1),
-    IN(start, FFR_T_U8, 1),
+#define CHECK(m, code) FFR_CHECK_ROW(ffr_config_t, m, code);
+#define CHECK_A(m, code, n) FFR_CHECK_ARRAY(ffr_config_t, m, code, n);
+WF_CONFIG_ROWS(CHECK, CHECK_A)
+FFR_STATIC_ASSERT(config_fits, sizeof(struct ffr_config) <= FFR_CONFIG_MAX);
+FFR_STATIC_ASSERT(state_fits, sizeof(struct ffr_state) <= FFR_STATE_MAX);
 
-    OUT(seq, FFR_T_U32, 1),
-    OUT(pwm, FFR_T_I16, 2),
-    OUT(fan, FFR_T_U8, 1),
-    OUT(state, FFR_T_U8, 1),
-    OUT(room, FFR_T_U8, 1),
-    OUT(rooms_searched, FFR_T_U8, 1),
-    OUT(line_count, FFR_T_U8, 1),
-    OUT(flags, FFR_T_U8, 1),
-    OUT(step, FFR_T_U8, 1),
-    OUT(fail_code, FFR_T_U8, 1),
-    OUT(odo_x_mm, FFR_T_I16, 1),
-    OUT(odo_y_mm, FFR_T_I16, 1),
-    OUT(odo_heading_cdeg, FFR_T_I16, 1),
-    OUT(reserved, FFR_T_I16, 1),
+#define ROW(m, code) FFR_ROW(FFR_S_CONFIG, ffr_config_t, m, code),
+#define ROW_A(m, code, n) FFR_ROW_ARRAY(FFR_S_CONFIG, ffr_config_t, m, code, n),
 
-    F32(wheel_radius_mm),
-    F32(track_width_mm),
-    F32(encoder_ticks_per_rev),
-    F32(body_front_mm),
-    F32(body_half_width_mm),
-    CFG(ir_x_mm, FFR_T_F32, FFR_IR_COUNT),
-    CFG(ir_y_mm, FFR_T_F32, FFR_IR_COUNT),
-    CFG(ir_angle_deg, FFR_T_F32, FFR_IR_COUNT),
-    F32(line_sensor_x_mm),
-    F32(ir_k_mv_mm),
-    F32(ir_offset_mv),
-    F32(ir_d0_mm),
-    F32(ir_max_mm),
-    F32(cruise_mm_s),
-    F32(approach_mm_s),
-    F32(turn_deg_s),
-    F32(scan_deg_s),
-    F32(accel_mm_s2),
-    F32(pwm_per_mm_s),
-    F32(pwm_offset),
-    F32(pwm_kp),
-    F32(wall_mm),
-    F32(wall_kp),
-    F32(angle_kp),
-    F32(heading_kp),
-    F32(max_yaw_deg_s),
-    F32(front_mm),
-    F32(open_mm),
-    F32(corner_mm),
-    F32(arc_max_deg),
-    F32(start_turn_deg),
-    F32(entry_mm),
-    F32(line_holdoff_mm),
-    F32(flame_detect),
-    F32(flame_near),
-    F32(flame_out),
-    F32(flame_steer_deg_s),
-    F32(approach_stop_mm),
-    F32(guard_mm),
-    F32(guard_kp),
-    F32(home_zone_mm),
-    F32(away_mm),
-    CFG(out_confirm_ms, FFR_T_U32, 1),
-    CFG(fan_max_ms, FFR_T_U32, 1),
-    CFG(mission_max_ms, FFR_T_U32, 1),
-    CFG(scan_attempts, FFR_T_U8, 1),
-    CFG(reserved, FFR_T_U8, 3),
-};
+/* The contract's I/O rows, then this firmware's configuration. */
+static const ffr_field_t k_layout[] = {FFR_IO_ROWS, WF_CONFIG_ROWS(ROW, ROW_A)};
 
 const ffr_field_t *ffr_layout(uint32_t *count)
 {
@@ -211,51 +160,9 @@ const char *const *ffr_names(uint32_t kind, uint32_t *count)
     return 0;
 }
 
-static uint32_t fnv(uint32_t h, const void *data, uint32_t n)
-{
-    const uint8_t *b = (const uint8_t *)data;
-    uint32_t i;
-    for (i = 0; i < n; i++) {
-        h ^= b[i];
-        h *= 16777619u;
-    }
-    return h;
-}
-
-static uint32_t fnv_str(uint32_t h, const char *s)
-{
-    uint32_t n = 0;
-    while (s[n] != '\0') {
-        n++;
-    }
-    return fnv(h, s, n + 1u); /* with its terminator: "ab","c" differs from "a","bc" */
-}
-
-static uint32_t fnv_u16(uint32_t h, uint16_t v)
-{
-    uint8_t b[2];
-    b[0] = (uint8_t)(v & 0xFFu);
-    b[1] = (uint8_t)(v >> 8);
-    return fnv(h, b, 2u);
-}
-
+/* The contract's recipe (ffr_contract_hash.h): the harness computes the same
+ * from what the library describes and compares a board's with it. */
 uint32_t ffr_layout_hash(void)
 {
-    uint32_t h = 2166136261u;
-    uint32_t n, i, kind;
-    const ffr_field_t *f = ffr_layout(&n);
-    for (i = 0; i < n; i++) {
-        h = fnv_str(h, f[i].name);
-        h = fnv_u16(h, f[i].struct_id);
-        h = fnv_u16(h, f[i].type);
-        h = fnv_u16(h, f[i].offset);
-        h = fnv_u16(h, f[i].count);
-    }
-    for (kind = FFR_NAMES_STATE; kind <= FFR_NAMES_FAIL; kind++) {
-        const char *const *names = ffr_names(kind, &n);
-        for (i = 0; i < n; i++) {
-            h = fnv_str(h, names[i]);
-        }
-    }
-    return fnv_str(h, ffr_firmware_name());
+    return ffr_contract_hash();
 }
