@@ -55,7 +55,7 @@ void ffr_config_default(ffr_config_t *c)
     c->corner_mm = 0.0f;
     c->arc_max_deg = 300.0f;
     c->start_turn_deg = 180.0f;
-    c->entry_mm = 120.0f;
+    c->entry_mm = 250.0f;
     c->line_holdoff_mm = 100.0f;
     c->flame_detect = 250.0f;
     c->flame_near = 3000.0f;
