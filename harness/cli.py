@@ -184,6 +184,8 @@ def _beside_reference(args: argparse.Namespace, scenarios: Sequence[Any]) -> str
     """``ffr table1 --firmware LIB.so`` of another firmware than ours: our firmware's table first,
     then (the caller prints it) the library's, each under its firmware's name (docs/teams.md). The
     JSON, plot and replays are the library's only. Without --firmware: nothing (the table as ever)."""
+    from dataclasses import replace
+
     from ffr_link.ctypes_link import firmware_info
     from harness.loop import run_mission
 

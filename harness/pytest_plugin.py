@@ -13,7 +13,8 @@ Fixtures:
   recorded as JUnit properties, and, when the test fails, the one-line
   ``ffr run ...`` command that replays each of its missions.
 
-Options: ``--ffr-link``, ``--ffr-firmware LIB.so`` (= ``--ffr-link ctypes:LIB.so``), ``--ffr-seed``, ``--ffr-noise``, ``--ffr-set KEY=VALUE``
+Options: ``--ffr-link``, ``--ffr-firmware LIB.so`` (= ``--ffr-link ctypes:LIB.so``), ``--ffr-seed``,
+``--ffr-noise``, ``--ffr-set KEY=VALUE``
 (repeatable), ``--ffr-profile quick|thorough`` (the hypothesis profile of the
 property tests), ``--ffr-failures DIR`` (where replay scenarios are written).
 

@@ -1,0 +1,102 @@
+"""The example firmware a team copies (examples/firmware/wall_follower/): its own C unit tests,
+its scenario tests through the pytest plugin (``--ffr-firmware``), ``ffr table1 --firmware``
+beside ours, and its CI workflow file."""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+REPO = Path(__file__).resolve().parents[2]
+EXAMPLE = REPO / "examples" / "firmware" / "wall_follower"
+pytestmark = pytest.mark.skipif(shutil.which("cc") is None or shutil.which("make") is None,
+                                reason="needs a C compiler (cc) and make")
+
+
+def _make(build: Path, *targets: str) -> str:
+    p = subprocess.run(["make", "-s", "-C", str(EXAMPLE), f"BUILD={build}", *targets], capture_output=True,
+                       text=True, timeout=300)
+    assert p.returncode == 0, p.stdout + p.stderr
+    return p.stdout
+
+
+@pytest.fixture(scope="module")
+def library(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    build = tmp_path_factory.mktemp("wf")
+    _make(build, "lib")
+    return build / "libwall_follower.so"
+
+
+def test_its_c_unit_tests_pass_by_name(tmp_path: Path) -> None:
+    out = _make(tmp_path, "test")
+    names = re.findall(r"^ok (test_\w+) \((\d+) checks\)$", out, re.M)
+    assert len(names) == 13 and all(int(n) > 0 for _, n in names), out
+    assert "13 tests, 0 failed" in out and "FAIL" not in out
+
+
+def test_it_meets_the_contract_with_its_own_config(library: Path) -> None:
+    from ffr_link.abi import contract_hash
+    from ffr_link.ctypes_link import default_config, firmware_info
+
+    fw = firmware_info(str(library))
+    assert fw.firmware_name == "wall_follower 0.1" and not fw.is_reference
+    assert fw.layout_hash == contract_hash(fw)
+    assert fw.state_names[0] == "IDLE" and {"FOLLOW", "SCAN", "DONE", "FAILED"} <= set(fw.state_names)
+    assert fw.fail_names[:2] == ("", "no flame found")
+    names = fw.config_dtype.names
+    assert names is not None and "wall_mm" in names and "route" not in names  # its own, not ours
+    cfg = default_config(str(library))
+    assert float(cfg["wall_mm"]) == 190.0 and float(cfg["wheel_radius_mm"]) == 28.0
+
+
+def test_its_scenario_tests_pass_through_the_plugin(library: Path, tmp_path: Path) -> None:
+    env = {k: v for k, v in os.environ.items() if k != "FFR_FIRMWARE_LIB"}
+    p = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+                        str(EXAMPLE / "tests" / "test_missions.py"), "--ffr-firmware", str(library),
+                        "--junitxml", str(tmp_path / "junit.xml"), "--ffr-failures", str(tmp_path / "failures")],
+                       cwd=REPO, env=env, capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-2000:]
+    assert re.search(r"\b6 passed\b", p.stdout), p.stdout[-2000:]
+    junit = (tmp_path / "junit.xml").read_text()
+    assert 'name="outcome" value="home"' in junit and f"ctypes:{library}" in junit
+    assert "xunit2" not in p.stdout  # the plugin's properties work under pytest's default family
+
+
+def test_table1_shows_the_example_beside_ours(library: Path) -> None:
+    def table1(*args: str, status: int) -> str:
+        p = subprocess.run([sys.executable, "-m", "harness", "table1", *args], cwd=REPO, capture_output=True,
+                           text=True, timeout=600)
+        assert p.returncode == status, p.stderr
+        return p.stdout
+
+    ours = table1(status=0)
+    both = table1("--firmware", str(library), status=1)  # 1: a mission of the library's failed (room 1)
+    first, _, second = both.partition("\n\n")
+    assert first.startswith("ffr-reference ") and first.split("\n", 1)[1] == ours.rstrip("\n")
+    assert second.startswith(f"wall_follower 0.1 ({library})\n")
+    outcome = next(line for line in second.splitlines() if line.startswith("outcome")).split()[1:]
+    assert outcome == ["error", "home", "home", "home"]  # room 1, the island room, is out of its reach
+
+
+def test_the_ci_workflow_is_valid_yaml_and_runs_the_team_s_commands() -> None:
+    wf = yaml.safe_load((EXAMPLE / "ci" / "github-workflow.yml").read_text())
+    assert set(wf[True]) == {"push", "pull_request"}  # YAML 1.1 reads the key `on` as True
+    steps = wf["jobs"]["missions"]["steps"]
+    runs = [s.get("run", "") for s in steps]
+    uses = [s.get("uses", "") for s in steps]
+    assert any(r.startswith("python -m pip install") for r in runs)
+    assert "make test" in runs and "ffr build --src . --out build" in runs
+    tests = next(r for r in runs if "pytest tests/" in r)
+    assert "--ffr-firmware build/libwall_follower.so" in tests and "--junitxml=out/junit.xml" in tests
+    assert "--ffr-failures out/ffr-failures" in tests
+    assert any("ffr run --scenario" in r and "--replay" in r for r in runs)
+    artefacts = [s["with"]["path"] for s in steps if s.get("uses", "").startswith("actions/upload-artifact")]
+    assert artefacts == ["out/junit.xml", "out/ffr-failures"]
+    assert uses[0].startswith("actions/checkout") and any(u.startswith("actions/setup-python") for u in uses)
