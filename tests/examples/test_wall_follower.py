@@ -100,3 +100,20 @@ def test_the_ci_workflow_is_valid_yaml_and_runs_the_team_s_commands() -> None:
     artefacts = [s["with"]["path"] for s in steps if s.get("uses", "").startswith("actions/upload-artifact")]
     assert artefacts == ["out/junit.xml", "out/ffr-failures"]
     assert uses[0].startswith("actions/checkout") and any(u.startswith("actions/setup-python") for u in uses)
+
+
+def test_readme_success_rates_are_what_the_sweep_prints(library: Path) -> None:
+    """The example's README quotes its success rates; they are what its `ffr sweep` prints now."""
+    readme = (EXAMPLE / "README.md").read_text(encoding="utf-8")
+    rows = re.findall(r"^\| (\w+) \| (\d+) of (\d+) \(([\d.]+) %\) \|$", readme, re.M)
+    assert [r[0] for r in rows] == ["none", "typical", "datasheet", "realistic", "harsh"]
+    quoted = {noise: f"{n} missions: {ok} succeeded ({pct} %)" for noise, ok, n, pct in rows}
+    both = re.search(r"\(`--rooms 1,2,3,4`, typical\): (\d+) of (\d+) \(([\d.]+) %\)", readme)
+    assert both is not None
+    # the fast ones here (a failing mission runs to its time limit: realistic and harsh take minutes)
+    for noise, rooms, want in [*[(k, "2,3,4", quoted[k]) for k in ("none", "typical", "datasheet")],
+                               ("typical", "1,2,3,4", f"{both[2]} missions: {both[1]} succeeded ({both[3]} %)")]:
+        p = subprocess.run([sys.executable, "-m", "harness", "sweep", "--firmware", str(library), "--rooms", rooms,
+                            "--candles", "random", "-n", "30", "--noise", noise, "--workers", "1", "--no-progress"],
+                           cwd=REPO, capture_output=True, text=True, timeout=600)
+        assert want in p.stdout, (noise, rooms, p.stdout[:400], p.stderr[-400:])
