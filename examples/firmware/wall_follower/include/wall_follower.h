@@ -157,7 +157,9 @@ struct ffr_state {
     uint8_t doors;               /* doorway lines crossed (odd: in a room)     */
     uint8_t prev_state;          /* the state before this one                  */
     uint8_t home_phase;          /* HOME: 0 across the circle, 1 back to the chord's middle */
-    uint8_t reserved2[3];
+    uint8_t doors_at_scan;       /* doorway lines crossed before the scan that saw the flame */
+    uint8_t doors_back;          /* and since, on the way back                 */
+    uint8_t reserved2;
     float x_mm, y_mm, heading_rad;
     float dist_mm;               /* path length                                */
     float v_mm_s[2];             /* measured wheel speeds, filtered            */

@@ -72,12 +72,19 @@ static wf_event_t common_event(ffr_state_t *st, const wf_sense_t *s)
         if (st->lines < 255u) {
             st->lines++;
         }
+        if (row->next[WF_EV_HOME] == 0u) {
+            return WF_EV_NONE; /* approaching, backing: a candle's ring, not a doorway */
+        }
+        if (st->flags & FFR_FLAG_EXTINGUISHED) {
+            /* the way back crosses the way in's doorways again: the line after them is home's
+             * ring (odometry drifts; counting does not), or one near the start by odometry */
+            st->doors_back++;
+            st->flags = (uint8_t)(st->flags ^ FFR_FLAG_IN_ROOM);
+            return st->doors_back > st->doors_at_scan || r < c->home_zone_mm ? WF_EV_HOME : WF_EV_NONE;
+        }
         if (r < c->home_zone_mm) {
             if (st->max_away_mm <= c->away_mm) {
                 return WF_EV_NONE; /* leaving home */
-            }
-            if (st->flags & FFR_FLAG_EXTINGUISHED) {
-                return WF_EV_HOME;
             }
             st->fail_code = WF_FAIL_NO_FLAME;
             return WF_EV_FAIL;

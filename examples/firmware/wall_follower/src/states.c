@@ -102,6 +102,7 @@ static void scan_start(ffr_state_t *st)
     st->best_sum = 0.0f;
     st->best_rad = st->heading_rad;
     st->scan_dist_mm = st->dist_mm;
+    st->doors_at_scan = st->doors;
     st->scan_x_mm = st->x_mm;
     st->scan_y_mm = st->y_mm;
     st->scan_at_mm = -1.0f;
@@ -137,6 +138,7 @@ static void back_to_scan(ffr_state_t *st)
     st->resume_rad = wf_wrap(st->resume_rad + WF_PI);
     st->resume_state = WF_FOLLOW;
     st->pending_run_mm = st->scan_dist_mm - st->follow_from_mm;
+    st->doors_back = 0u;
     st->side = -st->side;
 }
 

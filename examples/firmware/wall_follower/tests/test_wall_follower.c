@@ -252,6 +252,35 @@ static void test_back_home_without_a_flame_fails(void)
     CHECK(out.pwm[0] == 0 && out.pwm[1] == 0 && out.fan == 0u);
 }
 
+static void test_the_way_back_counts_the_way_in_s_doorways_to_home(void)
+{
+    ffr_state_t st;
+    ffr_inputs_t in;
+    ffr_outputs_t out;
+    int k;
+    fresh(&st);
+    st.x_mm = 3000.0f; /* odometry far from the start (it drifts): the count decides */
+    st.max_away_mm = 3000.0f;
+    st.flags = FFR_FLAG_EXTINGUISHED;
+    st.doors_at_scan = 3u; /* in, out of one room, into the candle's */
+    st.side = -1.0f;
+    wf_enter(&st, WF_FOLLOW);
+    memset(&in, 0, sizeof(in));
+    for (k = 1; k <= 4; k++) {
+        st.cmd_v = 200.0f;
+        in.line = 1u;
+        ffr_step(&st, &in, &out);
+        if (k < 4) {
+            in.line = 0u;
+            ffr_step(&st, &in, &out);
+            st.dist_mm += 500.0f;
+            CHECK(out.state != WF_HOME && st.doors_back == (uint8_t)k);
+            wf_enter(&st, WF_FOLLOW);
+        }
+    }
+    CHECK(out.state == WF_HOME); /* the line after the three doorways: home's ring */
+}
+
 static void test_fans_until_the_flame_stays_out_then_back_the_other_wall(void)
 {
     ffr_state_t st;
@@ -335,6 +364,7 @@ static const test_t k_tests[] = {
     T(test_waits_for_start_with_motors_off),
     T(test_doorway_lines_alternate_in_and_out),
     T(test_back_home_without_a_flame_fails),
+    T(test_the_way_back_counts_the_way_in_s_doorways_to_home),
     T(test_fans_until_the_flame_stays_out_then_back_the_other_wall),
     T(test_flame_never_out_gives_up),
     T(test_scan_turns_once_and_finds_the_brightest_heading),
