@@ -117,3 +117,28 @@ def test_readme_success_rates_are_what_the_sweep_prints(library: Path) -> None:
                             "--candles", "random", "-n", "30", "--noise", noise, "--workers", "1", "--no-progress"],
                            cwd=REPO, capture_output=True, text=True, timeout=600)
         assert want in p.stdout, (noise, rooms, p.stdout[:400], p.stderr[-400:])
+
+
+def _b2b(link: str, library: Path, env: dict[str, str]) -> str:
+    p = subprocess.run([sys.executable, "-m", "harness", "b2b", "--room", "4", "--link", link, "--firmware",
+                        str(library)], cwd=REPO, env=os.environ | env, capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stdout + p.stderr
+    return p.stdout
+
+
+def test_it_runs_unchanged_on_the_host_board(library: Path) -> None:
+    """The same sources behind ffr's wire (codec, board link, host board): tick for tick the
+    in-process library's mission."""
+    board = library.parent / "ffr-host-board"
+    _make(library.parent, "board")
+    out = _b2b("host-board:serial", library, {"FFR_HOST_BOARD": str(board), "FFR_FIRMWARE_LIB": str(library)})
+    assert "vs host-board:serial: identical" in out and "outcomes: home / home" in out
+
+
+@pytest.mark.skipif(shutil.which("qemu-system-arm") is None or shutil.which("arm-none-eabi-gcc") is None,
+                    reason="needs qemu-system-arm and arm-none-eabi-gcc (.ci/run installs them)")
+def test_it_runs_unchanged_on_the_emulated_cortex_m4(library: Path) -> None:
+    image = library.parent / "mps2-an386-board.elf"
+    _make(library.parent, "qemu")
+    out = _b2b("qemu:mps2-an386", library, {"FFR_QEMU_IMAGE": str(image), "FFR_FIRMWARE_LIB": str(library)})
+    assert "vs qemu:mps2-an386: identical" in out and "outcomes: home / home" in out
