@@ -142,3 +142,16 @@ def test_it_runs_unchanged_on_the_emulated_cortex_m4(library: Path) -> None:
     _make(library.parent, "qemu")
     out = _b2b("qemu:mps2-an386", library, {"FFR_QEMU_IMAGE": str(image), "FFR_FIRMWARE_LIB": str(library)})
     assert "vs qemu:mps2-an386: identical" in out and "outcomes: home / home" in out
+
+
+def test_the_compiled_loop_and_the_python_loop_agree_on_it(library: Path) -> None:
+    import numpy as np
+
+    from harness.loop import run_mission
+    from harness.scenario import make_scenario
+
+    runs = [run_mission(make_scenario(room=3, seed=5, noise="typical"), f"ctypes:{library}", compiled=c)
+            for c in (True, False)]
+    (fast, tf), (slow, ts) = runs
+    assert fast.outcome == slow.outcome == "home"
+    assert np.array_equal(tf.f, ts.f) and np.array_equal(tf.i, ts.i)  # bit-identical traces
