@@ -23,6 +23,7 @@ extern "C" {
 #endif
 
 #define WF_NAME "wall_follower 0.1"
+#define WF_IR_WINDOW 9 /* ticks of each ranger's median filter (sense.c) */
 
 /* Configuration: the first block carries the names ffr writes the robot's
  * calibration into (docs/contract.md); the rest is this firmware's own. */
@@ -53,6 +54,7 @@ struct ffr_config {
     float wall_kp;               /* yaw rate (deg/s) per mm of distance error  */
     float angle_kp;              /* yaw rate (deg/s) per degree of wall angle  */
     float heading_kp;            /* yaw rate (deg/s) per degree of heading error */
+    float heading_learn;         /* per tick, how much a straight wall corrects odometry's heading (0: never) */
     float max_yaw_deg_s;         /* clamp of the following's yaw rate          */
     float front_mm;              /* CF closer than this: a wall ahead, turn right */
     float open_mm;               /* LF farther than this: the left wall ends   */
@@ -157,9 +159,13 @@ struct ffr_state {
     uint8_t doors;               /* doorway lines crossed (odd: in a room)     */
     uint8_t prev_state;          /* the state before this one                  */
     uint8_t home_phase;          /* HOME: 0 across the circle, 1 back to the chord's middle */
+    uint8_t ir_pos;              /* where the next tick goes in ir_hist        */
+    uint8_t ir_primed;           /* ir_hist filled by the first tick           */
     uint8_t doors_at_scan;       /* doorway lines crossed before the scan that saw the flame */
     uint8_t doors_back;          /* and since, on the way back                 */
-    uint8_t reserved2;
+
+    uint16_t ir_hist[FFR_IR_COUNT][WF_IR_WINDOW]; /* each ranger's last ticks (a ring) */
+    uint16_t flame_hist[2][3];   /* each flame sensor's last three ticks       */
     float x_mm, y_mm, heading_rad;
     float dist_mm;               /* path length                                */
     float v_mm_s[2];             /* measured wheel speeds, filtered            */

@@ -49,6 +49,7 @@ void ffr_config_default(ffr_config_t *c)
     c->wall_kp = 1.2f;
     c->angle_kp = 3.5f;
     c->heading_kp = 4.0f;
+    c->heading_learn = 0.02f;
     c->max_yaw_deg_s = 120.0f;
     c->front_mm = 120.0f;
     c->open_mm = 400.0f;
@@ -83,7 +84,7 @@ void ffr_config_default(ffr_config_t *c)
     S(ir_k_mv_mm, F32) S(ir_offset_mv, F32) S(ir_d0_mm, F32) S(ir_max_mm, F32) S(cruise_mm_s, F32) \
     S(approach_mm_s, F32) S(turn_deg_s, F32) S(scan_deg_s, F32) S(accel_mm_s2, F32) \
     S(pwm_per_mm_s, F32) S(pwm_offset, F32) S(pwm_kp, F32) S(wall_mm, F32) S(wall_kp, F32) \
-    S(angle_kp, F32) S(heading_kp, F32) S(max_yaw_deg_s, F32) S(front_mm, F32) S(open_mm, F32) \
+    S(angle_kp, F32) S(heading_kp, F32) S(heading_learn, F32) S(max_yaw_deg_s, F32) S(front_mm, F32) S(open_mm, F32) \
     S(corner_mm, F32) S(arc_max_deg, F32) S(start_turn_deg, F32) S(entry_mm, F32) \
     S(line_holdoff_mm, F32) S(flame_detect, F32) S(flame_near, F32) S(flame_out, F32) \
     S(flame_steer_deg_s, F32) S(approach_stop_mm, F32) S(guard_mm, F32) S(guard_kp, F32) \

@@ -96,15 +96,55 @@ static void hit(const struct ffr_config *c, int i, float d, float side, float *h
     *hy = side * (c->ir_y_mm[i] + d * wf_sin(a));
 }
 
+static uint16_t median3(uint16_t a, uint16_t b, uint16_t c)
+{
+    if (a > b) {
+        uint16_t t = a;
+        a = b;
+        b = t;
+    }
+    /* a <= b */
+    if (c <= a) {
+        return a;
+    }
+    return c < b ? c : b;
+}
+
+static uint16_t median_ir(const uint16_t h[WF_IR_WINDOW])
+{
+    uint16_t v[WF_IR_WINDOW];
+    int i, j;
+    for (i = 0; i < WF_IR_WINDOW; i++) { /* insertion sort of a copy */
+        uint16_t x = h[i];
+        for (j = i; j > 0 && v[j - 1] > x; j--) {
+            v[j] = v[j - 1];
+        }
+        v[j] = x;
+    }
+    return v[WF_IR_WINDOW / 2];
+}
+
 void wf_sense(ffr_state_t *st, const ffr_inputs_t *in, wf_sense_t *s)
 {
     const struct ffr_config *c = &st->cfg;
+    float fl[2];
     int i;
     int fi = st->side > 0.0f ? FFR_IR_LF : FFR_IR_RF;
     int ri = st->side > 0.0f ? FFR_IR_LR : FFR_IR_RR;
     for (i = 0; i < FFR_IR_COUNT; i++) {
-        s->ir_mm[i] = wf_ir_mm(c, in->ir_mv[i]);
+        /* a ranger holds each measurement ~38 ms (4 ticks): the median of the last
+         * WF_IR_WINDOW ticks drops a lone spike or dropout, ~45 ms late */
+        if (!st->ir_primed) { /* the first tick fills the window */
+            int k;
+            for (k = 0; k < WF_IR_WINDOW; k++) {
+                st->ir_hist[i][k] = in->ir_mv[i];
+            }
+        }
+        st->ir_hist[i][st->ir_pos] = in->ir_mv[i];
+        s->ir_mm[i] = wf_ir_mm(c, median_ir(st->ir_hist[i]));
     }
+    st->ir_pos = (uint8_t)((st->ir_pos + 1u) % WF_IR_WINDOW);
+    st->ir_primed = 1u;
     s->side_front_mm = s->ir_mm[fi];
     s->side_hit_x_mm = 0.0f;
     s->side_hit_y_mm = c->open_mm;
@@ -130,8 +170,16 @@ void wf_sense(ffr_state_t *st, const ffr_inputs_t *in, wf_sense_t *s)
             s->side_deg = wf_atan2(dy, dx) / WF_DEG;
         }
     }
-    s->flame_sum = (float)in->flame[0] + (float)in->flame[1];
-    s->flame_diff = (float)in->flame[0] - (float)in->flame[1];
+    /* the flame sensors, read every tick: the median of the last three ticks each */
+    for (i = 0; i < 2; i++) {
+        uint16_t *h = st->flame_hist[i];
+        h[2] = h[1];
+        h[1] = h[0];
+        h[0] = in->flame[i];
+        fl[i] = (float)median3(h[0], h[1], h[2]);
+    }
+    s->flame_sum = fl[0] + fl[1];
+    s->flame_diff = fl[0] - fl[1];
     s->line_edge = 0u;
     if (in->line && !st->line_level) {
         s->line_edge = 1u;

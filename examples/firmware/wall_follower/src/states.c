@@ -190,6 +190,15 @@ static wf_event_t follow_tick(ffr_state_t *st, const wf_sense_t *s)
         st->end_at_mm = st->dist_mm + s->side_hit_x_mm;
     }
     st->cmd_v = cruise(st, s);
+    if (s->side_ok && absf(s->side_deg) < 10.0f && absf(s->side_mm - c->wall_mm) < 60.0f) {
+        /* the contest's walls meet at right angles, and the start faces along one: a straight
+         * wall beside tells odometry's heading, whatever the turns before got wrong */
+        float wall = st->heading_rad + st->side * s->side_deg * WF_DEG;
+        float quarter = 0.5f * WF_PI;
+        float k = wall / quarter;
+        float snapped = quarter * (float)(int)(k + (k < 0.0f ? -0.5f : 0.5f));
+        st->heading_rad = wf_wrap(st->heading_rad + c->heading_learn * wf_wrap(snapped - wall));
+    }
     if (s->side_ok) {
         float w = c->wall_kp * (s->side_mm - c->wall_mm) + c->angle_kp * s->side_deg;
         st->cmd_w = st->side * clampf(w * WF_DEG, -lim, lim);

@@ -54,6 +54,15 @@ static void wall_left(const ffr_config_t *c, ffr_inputs_t *in, float lat)
     in->ir_mv[FFR_IR_LR] = mv_for(c, r);
 }
 
+/* The sensors after steady inputs (the rangers' median filter has settled). */
+static void sense(ffr_state_t *st, const ffr_inputs_t *in, wf_sense_t *s)
+{
+    int k;
+    for (k = 0; k < WF_IR_WINDOW; k++) {
+        wf_sense(st, in, s);
+    }
+}
+
 /* ---- tests -------------------------------------------------------------- */
 
 static void test_math_sqrt_sin_cos_atan2(void)
@@ -151,17 +160,17 @@ static void test_sense_a_parallel_left_wall(void)
     wf_sense_t s;
     fresh(&st);
     wall_left(&st.cfg, &in, 190.0f);
-    wf_sense(&st, &in, &s);
+    sense(&st, &in, &s);
     CHECK(s.side_ok);
     NEAR(s.side_mm, 190.0, 3.0);
     NEAR(s.side_deg, 0.0, 1.0);
     /* the wall farther at the front than at the back: it turns away, angle > 0 */
     in.ir_mv[FFR_IR_LF] = mv_for(&st.cfg, 260.0f);
-    wf_sense(&st, &in, &s);
+    sense(&st, &in, &s);
     CHECK(s.side_ok && s.side_deg > 5.0f);
     /* the right side (the way home) sees nothing there */
     st.side = -1.0f;
-    wf_sense(&st, &in, &s);
+    sense(&st, &in, &s);
     CHECK(!s.side_ok && s.side_front_mm > st.cfg.open_mm);
 }
 
@@ -173,16 +182,16 @@ static void test_follow_steers_to_the_wall_distance(void)
     const wf_state_row_t *row = &wf_state_table()[WF_FOLLOW];
     fresh(&st);
     wall_left(&st.cfg, &in, 260.0f); /* too far: turn left */
-    wf_sense(&st, &in, &s);
+    sense(&st, &in, &s);
     CHECK(row->tick(&st, &s) == WF_EV_NONE && st.cmd_w > 0.0f && st.cmd_v > 0.0f);
     wall_left(&st.cfg, &in, 150.0f); /* too near: turn right */
-    wf_sense(&st, &in, &s);
+    sense(&st, &in, &s);
     CHECK(row->tick(&st, &s) == WF_EV_NONE && st.cmd_w < 0.0f);
     in.ir_mv[FFR_IR_CF] = mv_for(&st.cfg, 100.0f); /* a wall ahead */
-    wf_sense(&st, &in, &s);
+    sense(&st, &in, &s);
     CHECK(row->tick(&st, &s) == WF_EV_FRONT);
     memset(&in, 0, sizeof(in)); /* the wall ends */
-    wf_sense(&st, &in, &s);
+    sense(&st, &in, &s);
     CHECK(row->tick(&st, &s) == WF_EV_OPEN);
 }
 
