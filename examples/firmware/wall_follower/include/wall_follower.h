@@ -66,6 +66,7 @@ struct ffr_config {
     float flame_detect;          /* counts, both sensors: a flame seen         */
     float flame_near;            /* counts, both sensors: close enough for the fans */
     float flame_out;             /* counts, both sensors: below this it is out */
+    float out_fraction;          /* or below this fraction of its brightness when the fans started */
     float flame_steer_deg_s;     /* yaw rate for a full left/right imbalance   */
     float approach_stop_mm;      /* CF closer than this: stop approaching      */
     float guard_mm;              /* approaching, LF or RF closer than this: steer off */
@@ -182,6 +183,7 @@ struct ffr_state {
     float resume_rad;            /* heading to turn back to after a scan       */
     float best_sum;              /* the scan's brightest reading               */
     float best_rad;              /* and its heading                            */
+    float flame_ref;             /* the flame's brightness when the fans started */
     float max_away_mm;           /* farthest from the start so far             */
     float scan_x_mm, scan_y_mm;  /* where the scan was made (odometry)         */
     float goal_x_mm, goal_y_mm;  /* where GOTO and HOME drive to               */

@@ -61,6 +61,7 @@ void ffr_config_default(ffr_config_t *c)
     c->flame_detect = 250.0f;
     c->flame_near = 3000.0f;
     c->flame_out = 120.0f;
+    c->out_fraction = 0.1f;
     c->flame_steer_deg_s = 90.0f;
     c->approach_stop_mm = 120.0f;
     c->guard_mm = 150.0f;
@@ -86,7 +87,7 @@ void ffr_config_default(ffr_config_t *c)
     S(pwm_per_mm_s, F32) S(pwm_offset, F32) S(pwm_kp, F32) S(wall_mm, F32) S(wall_kp, F32) \
     S(angle_kp, F32) S(heading_kp, F32) S(heading_learn, F32) S(max_yaw_deg_s, F32) S(front_mm, F32) S(open_mm, F32) \
     S(corner_mm, F32) S(arc_max_deg, F32) S(start_turn_deg, F32) S(entry_mm, F32) \
-    S(line_holdoff_mm, F32) S(flame_detect, F32) S(flame_near, F32) S(flame_out, F32) \
+    S(line_holdoff_mm, F32) S(flame_detect, F32) S(flame_near, F32) S(flame_out, F32) S(out_fraction, F32) \
     S(flame_steer_deg_s, F32) S(approach_stop_mm, F32) S(guard_mm, F32) S(guard_kp, F32) \
     S(home_zone_mm, F32) S(away_mm, F32) S(out_confirm_ms, U32) S(fan_max_ms, U32) \
     S(mission_max_ms, U32) S(scan_attempts, U8) A(reserved, U8, 3)

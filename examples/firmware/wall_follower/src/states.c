@@ -290,6 +290,7 @@ static wf_event_t approach_tick(ffr_state_t *st, const wf_sense_t *s)
     st->cmd_v = c->approach_mm_s;
     st->cmd_w = clampf(w * WF_DEG, -lim, lim);
     if (s->flame_sum >= c->flame_near || s->ir_mm[FFR_IR_CF] < c->approach_stop_mm) {
+        st->flame_ref = s->flame_sum; /* how bright it is when the fans start */
         return WF_EV_NEAR;
     }
     if (s->flame_sum < c->flame_detect) {
@@ -316,7 +317,9 @@ static wf_event_t extinguish_tick(ffr_state_t *st, const wf_sense_t *s)
     float bal = s->flame_sum > 1.0f ? s->flame_diff / s->flame_sum : 0.0f;
     st->cmd_v = 0.0f;
     st->cmd_w = clampf(c->flame_steer_deg_s * WF_DEG * bal, -0.5f, 0.5f);
-    if (s->flame_sum < c->flame_out) {
+    /* out: below flame_out, or (ambient light, an offset) below out_fraction of the start */
+    float out = c->out_fraction * st->flame_ref;
+    if (s->flame_sum < (out > c->flame_out ? out : c->flame_out)) {
         st->cmd_w = 0.0f;
         if (st->below_ms == 0u) {
             st->below_ms = st->t_ms | 1u;
