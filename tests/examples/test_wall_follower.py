@@ -37,8 +37,8 @@ def library(tmp_path_factory: pytest.TempPathFactory) -> Path:
 def test_its_c_unit_tests_pass_by_name(tmp_path: Path) -> None:
     out = _make(tmp_path, "test")
     names = re.findall(r"^ok (test_\w+) \((\d+) checks\)$", out, re.M)
-    assert len(names) == 14 and all(int(n) > 0 for _, n in names), out
-    assert "14 tests, 0 failed" in out and "FAIL" not in out
+    assert len(names) == 15 and all(int(n) > 0 for _, n in names), out
+    assert "15 tests, 0 failed" in out and "FAIL" not in out
 
 
 def test_it_meets_the_contract_with_its_own_config(library: Path) -> None:

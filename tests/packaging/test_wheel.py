@@ -104,7 +104,7 @@ def test_a_team_builds_and_tests_the_example_firmware_with_the_installed_ffr(ins
     make = subprocess.run(["make", "-s", "test", f"PYTHON={venv / 'bin' / 'python'}"], cwd=team,
                           env={k: v for k, v in installed[1].items() if k != "_CWD"}, capture_output=True,
                           text=True, timeout=300)
-    assert make.returncode == 0 and "14 tests, 0 failed" in make.stdout, make.stdout + make.stderr
+    assert make.returncode == 0 and "15 tests, 0 failed" in make.stdout, make.stdout + make.stderr
     p = _run(installed, "python", "-m", "pytest", "-q", "-p", "no:cacheprovider", "tests/test_missions.py",
              "--ffr-firmware", "build/libwall_follower.so", "--junitxml", "out/junit.xml", cwd=team)
     assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-2000:]

@@ -24,6 +24,7 @@ extern "C" {
 
 #define WF_NAME "wall_follower 0.1"
 #define WF_IR_WINDOW 9 /* ticks of each ranger's median filter (sense.c) */
+#define WF_LINE_TICKS 3 /* ticks a line reading must last (sense.c) */
 
 /* Configuration: the first block carries the names ffr writes the robot's
  * calibration into (docs/contract.md); the rest is this firmware's own. */
@@ -162,6 +163,7 @@ struct ffr_state {
     uint8_t home_phase;          /* HOME: 0 across the circle, 1 back to the chord's middle */
     uint8_t ir_pos;              /* where the next tick goes in ir_hist        */
     uint8_t ir_primed;           /* ir_hist filled by the first tick           */
+    uint8_t line_run;            /* ticks the line sensor has read other than line_level */
     uint8_t doors_at_scan;       /* doorway lines crossed before the scan that saw the flame */
     uint8_t doors_back;          /* and since, on the way back                 */
 

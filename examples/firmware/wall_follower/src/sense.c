@@ -180,11 +180,16 @@ void wf_sense(ffr_state_t *st, const ffr_inputs_t *in, wf_sense_t *s)
     }
     s->flame_sum = fl[0] + fl[1];
     s->flame_diff = fl[0] - fl[1];
+    /* a line is white for WF_LINE_TICKS ticks in a row (a 2.5 cm line is ~10 ticks at
+     * cruise speed): a one-tick misread is not a line */
     s->line_edge = 0u;
-    if (in->line && !st->line_level) {
-        s->line_edge = 1u;
+    if ((in->line != 0u) == (st->line_level != 0u)) {
+        st->line_run = 0u;
+    } else if (++st->line_run >= WF_LINE_TICKS) {
+        st->line_level = in->line ? 1u : 0u;
+        st->line_run = 0u;
+        s->line_edge = st->line_level;
     }
-    st->line_level = in->line ? 1u : 0u;
 }
 
 void wf_odometry(ffr_state_t *st, const int32_t enc[2])

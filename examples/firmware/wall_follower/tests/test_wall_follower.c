@@ -63,6 +63,23 @@ static void sense(ffr_state_t *st, const ffr_inputs_t *in, wf_sense_t *s)
     }
 }
 
+/* Drive over a white line: WF_LINE_TICKS ticks of white (the last one is the
+ * line's edge), moving forward; `out` is that tick's. Then as many of black. */
+static void cross_line(ffr_state_t *st, ffr_inputs_t *in, ffr_outputs_t *out)
+{
+    ffr_outputs_t dark;
+    int k;
+    for (k = 0; k < 2 * WF_LINE_TICKS; k++) {
+        in->line = k < WF_LINE_TICKS ? 1u : 0u;
+        st->cmd_v = 200.0f;
+        ffr_step(st, in, k < WF_LINE_TICKS ? out : &dark);
+        if (out->state == WF_DONE || out->state == WF_FAILED || out->state == WF_HOME) {
+            break;
+        }
+    }
+    in->line = 0u;
+}
+
 /* ---- tests -------------------------------------------------------------- */
 
 static void test_math_sqrt_sin_cos_atan2(void)
@@ -174,6 +191,39 @@ static void test_sense_a_parallel_left_wall(void)
     CHECK(!s.side_ok && s.side_front_mm > st.cfg.open_mm);
 }
 
+static void test_a_lone_spike_is_not_a_wall_nor_a_blip_a_line(void)
+{
+    ffr_state_t st;
+    ffr_inputs_t in;
+    wf_sense_t s;
+    int k, edges = 0;
+    fresh(&st);
+    wall_left(&st.cfg, &in, 190.0f);
+    sense(&st, &in, &s);
+    CHECK(s.ir_mm[FFR_IR_CF] > st.cfg.ir_max_mm);
+    in.ir_mv[FFR_IR_CF] = 2400u; /* one measurement (4 ticks) says a wall touches the front */
+    for (k = 0; k < 4; k++) {
+        wf_sense(&st, &in, &s);
+        CHECK(s.ir_mm[FFR_IR_CF] > st.cfg.ir_max_mm);
+    }
+    for (k = 0; k < WF_IR_WINDOW; k++) { /* it stays: it is there */
+        wf_sense(&st, &in, &s);
+    }
+    CHECK(s.ir_mm[FFR_IR_CF] < 150.0f);
+    for (k = 0; k < 40; k++) { /* white for one tick in every four: never a line */
+        in.line = (k % 4 == 0) ? 1u : 0u;
+        wf_sense(&st, &in, &s);
+        edges += s.line_edge;
+    }
+    CHECK(edges == 0);
+    in.line = 1u;
+    for (k = 0; k < WF_LINE_TICKS; k++) {
+        wf_sense(&st, &in, &s);
+        edges += s.line_edge;
+    }
+    CHECK(edges == 1);
+}
+
 static void test_follow_steers_to_the_wall_distance(void)
 {
     ffr_state_t st;
@@ -227,8 +277,7 @@ static void test_doorway_lines_alternate_in_and_out(void)
     st.cmd_v = 200.0f;
     wall_left(&st.cfg, &in, 190.0f);
     for (k = 0; k < 2; k++) {
-        in.line = 1u;
-        ffr_step(&st, &in, &out);
+        cross_line(&st, &in, &out);
         in.line = 0u;
         st.dist_mm += 500.0f;
         st.cmd_v = 200.0f;
@@ -255,8 +304,7 @@ static void test_back_home_without_a_flame_fails(void)
     st.max_away_mm = 3000.0f; /* was far away, now at the start again */
     st.cmd_v = 200.0f;
     wall_left(&st.cfg, &in, 190.0f);
-    in.line = 1u;
-    ffr_step(&st, &in, &out);
+    cross_line(&st, &in, &out);
     CHECK(out.state == WF_FAILED && (out.flags & FFR_FLAG_FAILED) && out.fail_code == WF_FAIL_NO_FLAME);
     CHECK(out.pwm[0] == 0 && out.pwm[1] == 0 && out.fan == 0u);
 }
@@ -277,8 +325,7 @@ static void test_the_way_back_counts_the_way_in_s_doorways_to_home(void)
     memset(&in, 0, sizeof(in));
     for (k = 1; k <= 4; k++) {
         st.cmd_v = 200.0f;
-        in.line = 1u;
-        ffr_step(&st, &in, &out);
+        cross_line(&st, &in, &out);
         if (k < 4) {
             in.line = 0u;
             ffr_step(&st, &in, &out);
@@ -369,6 +416,7 @@ static const test_t k_tests[] = {
     T(test_names_of_states_and_failures),
     T(test_state_table_is_complete),
     T(test_sense_a_parallel_left_wall),
+    T(test_a_lone_spike_is_not_a_wall_nor_a_blip_a_line),
     T(test_follow_steers_to_the_wall_distance),
     T(test_waits_for_start_with_motors_off),
     T(test_doorway_lines_alternate_in_and_out),
