@@ -24,6 +24,7 @@ from functools import lru_cache
 import numpy as np
 
 from ffr_link.abi import (
+    CONFIG_MAX,
     INPUT_FIELDS,
     INPUTS_DTYPE,
     OUTPUT_FIELDS,
@@ -104,7 +105,7 @@ def _same_bytes(native: np.dtype, wire: np.dtype) -> bool:
 class Wire:
     """The message bodies for one firmware: the fixed ones and the RESET body, its configuration
     (read from its layout table; ``docs/contract.md``). ``wire_for(config_dtype)`` caches one per
-    firmware; the module's ``BODY_WIRE``, ``MSG_MAX``... are those of the default firmware
+    firmware; the module's ``BODY_WIRE``, ``CONFIG_WIRE``... are those of the default firmware
     ($FFR_FIRMWARE_LIB, else ours), whose library is loaded on first use."""
 
     def __init__(self, config: np.ndarray | np.dtype) -> None:
@@ -115,8 +116,13 @@ class Wire:
         self.native: dict[MsgType, np.dtype] = {MsgType.OUTPUTS: OUTPUTS_DTYPE, MsgType.INPUTS: INPUTS_DTYPE,
                                                 MsgType.RESET: self.config_dtype}
         self.raw_ok = {t: _same_bytes(d, self.body_wire[t]) for t, d in self.native.items()}
-        self.msg_max = 1 + self.config_dtype.itemsize
-        self.frame_max = self.msg_max + 2 + (self.msg_max + 2) // 254 + 2
+
+
+# Upper bounds, the same for every firmware (FFR_MSG_MAX, FFR_FRAME_MAX in ffr_codec.h): a message is
+# the type byte and at most a config of the contract's largest (FFR_CONFIG_MAX); a serial frame adds
+# the CRC, COBS overhead (one byte per 254) and the delimiter.
+MSG_MAX = 1 + CONFIG_MAX
+FRAME_MAX = MSG_MAX + 2 + (MSG_MAX + 2) // 254 + 2
 
 
 _WIRES: dict[np.dtype, Wire] = {}
@@ -140,8 +146,8 @@ def wire_for(config: np.dtype | None = None) -> Wire:
 
 
 def __getattr__(name: str) -> object:  # PEP 562: the default firmware's bodies and sizes, on first use
-    attrs = {"BODY_WIRE": "body_wire", "NATIVE": "native", "RAW_OK": "raw_ok", "MSG_MAX": "msg_max",
-             "FRAME_MAX": "frame_max", "CONFIG_WIRE": "config_wire", "CONFIG_DTYPE": "config_dtype"}
+    attrs = {"BODY_WIRE": "body_wire", "NATIVE": "native", "RAW_OK": "raw_ok", "CONFIG_WIRE": "config_wire",
+             "CONFIG_DTYPE": "config_dtype"}
     if name in attrs:
         return getattr(wire_for(), attrs[name])
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
@@ -218,8 +224,8 @@ def record(t: MsgType, **fields: int) -> np.ndarray:
 
 # ---- serial frames ---------------------------------------------------------------------------------------------
 def frame_encode(msg: bytes) -> bytes:
-    if not 1 <= len(msg) <= wire_for().msg_max:
-        raise ValueError(f"message of {len(msg)} bytes (1..{wire_for().msg_max})")
+    if not 1 <= len(msg) <= MSG_MAX:
+        raise ValueError(f"message of {len(msg)} bytes (1..{MSG_MAX})")
     return cobs.encode(append_crc(msg)) + b"\x00"
 
 
@@ -227,9 +233,9 @@ def frame_decode(frame: bytes) -> bytes:
     """One frame without its delimiter -> the message; DecodeError with the C codec's status otherwise."""
     if len(frame) < 4:
         raise DecodeError(Status.SHORT, f"frame of {len(frame)} bytes")
-    if len(frame) > wire_for().frame_max:
-        raise DecodeError(Status.LONG, f"frame of {len(frame)} bytes (at most {wire_for().frame_max})")
-    data = cobs.decode(frame, cap=wire_for().msg_max + 2)  # the buffer ffr_frame_decode's callers give it
+    if len(frame) > FRAME_MAX:
+        raise DecodeError(Status.LONG, f"frame of {len(frame)} bytes (at most {FRAME_MAX})")
+    data = cobs.decode(frame, cap=MSG_MAX + 2)  # the buffer ffr_frame_decode's callers give it
     if len(data) < 3:
         raise DecodeError(Status.SHORT, f"{len(data)} bytes after COBS")
     if crc16(data) != 0:
@@ -246,16 +252,16 @@ class Deframer:
     def push(self, data: bytes) -> Iterator[bytes | DecodeError]:
         self._buf += data
         if 0 not in data:
-            if len(self._buf) > wire_for().frame_max:  # keep only the knowledge that it is too long
-                del self._buf[wire_for().frame_max + 1:]
+            if len(self._buf) > FRAME_MAX:  # keep only the knowledge that it is too long
+                del self._buf[FRAME_MAX + 1:]
             return
         *frames, rest = bytes(self._buf).split(b"\x00")
         self._buf = bytearray(rest)
         for f in frames:
             if not f:
                 continue  # idle delimiters
-            if len(f) > wire_for().frame_max:
-                yield DecodeError(Status.LONG, f"frame of more than {wire_for().frame_max} bytes")
+            if len(f) > FRAME_MAX:
+                yield DecodeError(Status.LONG, f"frame of more than {FRAME_MAX} bytes")
             else:
                 yield f
 

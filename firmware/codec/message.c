@@ -36,8 +36,8 @@ size_t ffr_msg_body_size(uint8_t type)
         return FFR_HELLO_SIZE;
     case FFR_MSG_READY:
         return FFR_READY_SIZE;
-    case FFR_MSG_RESET:
-        return ffr_wire_size(FFR_S_CONFIG);
+    case FFR_MSG_RESET: /* the firmware's config: refused beyond the contract's limit */
+        return ffr_sizeof(FFR_S_CONFIG) <= FFR_CONFIG_MAX ? ffr_wire_size(FFR_S_CONFIG) : 0u;
     default:
         return 0u;
     }
@@ -81,7 +81,7 @@ size_t ffr_msg_encode(const ffr_msg_t *m, uint8_t *buf, size_t cap)
     case FFR_MSG_OUTPUTS:
         return ffr_wire_encode(FFR_S_OUTPUTS, &m->u.outputs, b, cap - 1u) == body ? 1u + body : 0u;
     default: /* FFR_MSG_RESET */
-        return ffr_wire_encode(FFR_S_CONFIG, &m->u.config, b, cap - 1u) == body ? 1u + body : 0u;
+        return ffr_wire_encode(FFR_S_CONFIG, m->u.config, b, cap - 1u) == body ? 1u + body : 0u;
     }
     return 1u + body;
 }
@@ -136,7 +136,7 @@ int ffr_msg_decode(const uint8_t *buf, size_t len, ffr_msg_t *m)
     case FFR_MSG_OUTPUTS:
         return ffr_wire_decode(FFR_S_OUTPUTS, b, body, &m->u.outputs) == body ? FFR_OK : FFR_E_LENGTH;
     default: /* FFR_MSG_RESET */
-        return ffr_wire_decode(FFR_S_CONFIG, b, body, &m->u.config) == body ? FFR_OK : FFR_E_LENGTH;
+        return ffr_wire_decode(FFR_S_CONFIG, b, body, m->u.config) == body ? FFR_OK : FFR_E_LENGTH;
     }
     return FFR_OK;
 }

@@ -19,7 +19,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "ffr.h"
+#include "ffr_contract.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -36,7 +36,7 @@ typedef enum {
     FFR_MSG_INFO = 4,    /* board -> host: handshake answer              */
     FFR_MSG_HELLO = 5,   /* host -> board: handshake                     */
     FFR_MSG_READY = 6,   /* board -> host: reset done                    */
-    FFR_MSG_RESET = 7    /* host -> board: ffr_config_t, restart         */
+    FFR_MSG_RESET = 7    /* host -> board: the firmware's config, restart */
 } ffr_msg_type_t;
 
 /* Error codes in FFR_MSG_ERROR. */
@@ -102,18 +102,22 @@ typedef struct {
         ffr_error_t error;
         ffr_inputs_t inputs;
         ffr_outputs_t outputs;
-        ffr_config_t config;
+        /* the firmware's own ffr_config_t (any contract firmware's: at most
+         * FFR_CONFIG_MAX bytes), 8-aligned; FFR_MSG_CONFIG(m) is it, typed */
+        uint64_t config[FFR_CONFIG_MAX / 8u];
     } u;
 } ffr_msg_t;
+#define FFR_MSG_CONFIG(m) ((ffr_config_t *)(void *)(m)->u.config)
 
 /* Wire body sizes (fixed per type). */
 #define FFR_HELLO_SIZE 4u
 #define FFR_INFO_SIZE 20u
 #define FFR_READY_SIZE 4u
 #define FFR_ERROR_SIZE 8u
-/* Upper bounds: a message is at most the type byte and the config; a serial
+/* Upper bounds: a message is at most the type byte and a config of the
+ * contract's largest (FFR_CONFIG_MAX: any firmware's RESET fits); a serial
  * frame adds the CRC, COBS overhead (one byte per 254) and the delimiter. */
-#define FFR_MSG_MAX (1u + (uint32_t)sizeof(ffr_config_t))
+#define FFR_MSG_MAX (1u + FFR_CONFIG_MAX)
 #define FFR_FRAME_MAX (FFR_MSG_MAX + 2u + (FFR_MSG_MAX + 2u) / 254u + 2u)
 
 /* CRC-16/IBM-3740: poly 0x1021, init 0xFFFF, no reflection, xorout 0; check("123456789") = 0x29B1. */

@@ -4,6 +4,10 @@
  * sequence number (a repeated request gets the same answer again, the
  * firmware is not stepped twice), error reports, and the link watchdog.
  *
+ * It carries any firmware that meets the contract (ffr_contract.h): the
+ * firmware's state and configuration live in buffers of FFR_STATE_MAX and
+ * FFR_CONFIG_MAX bytes; a firmware whose state is larger is refused at RESET.
+ *
  * Portable like the firmware: no I/O, no heap, no globals. A board's
  * transport (UART, CAN, a pty on the host) feeds it decoded messages and the
  * board clock, and sends what it returns; every board shares this code.
@@ -11,8 +15,8 @@
 #ifndef FFR_LINK_H
 #define FFR_LINK_H
 
-#include "ffr.h"
 #include "ffr_codec.h"
+#include "ffr_contract.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -21,7 +25,7 @@ extern "C" {
 #define FFR_WATCHDOG_DEFAULT_MS 500u
 
 typedef struct {
-    ffr_state_t fw;
+    uint64_t fw[FFR_STATE_MAX / 8u]; /* the firmware's ffr_state_t (any contract firmware's), 8-aligned */
     ffr_msg_t msg;            /* scratch for decoding and replies (a config is big: not on the stack) */
     ffr_outputs_t last_out;   /* the answer to the last sequence number, for repeats */
     uint32_t last_rx_ms;      /* board clock at the last valid inputs  */

@@ -3,6 +3,8 @@
  */
 #include "ffr_link.h"
 
+#define FW(b) ((ffr_state_t *)(void *)(b)->fw)
+
 static size_t error_reply(ffr_board_link_t *b, uint8_t code, uint8_t detail, uint32_t seq, uint8_t *reply,
                           size_t cap)
 {
@@ -38,11 +40,11 @@ static void step_firmware(ffr_board_link_t *b)
 {
     uint32_t c0, dc;
     if (b->step_clock == 0) {
-        ffr_step(&b->fw, &b->msg.u.inputs, &b->last_out);
+        ffr_step(FW(b), &b->msg.u.inputs, &b->last_out);
         return;
     }
     c0 = b->step_clock();
-    ffr_step(&b->fw, &b->msg.u.inputs, &b->last_out);
+    ffr_step(FW(b), &b->msg.u.inputs, &b->last_out);
     dc = (b->step_clock() - c0) & 0xFFFFFFu;
     b->prof_steps++;
     b->prof_sum += dc;
@@ -104,7 +106,11 @@ size_t ffr_board_link_on_msg(ffr_board_link_t *b, const uint8_t *msg, size_t len
         b->tx_msgs++;
         return ffr_msg_encode(&b->msg, reply, cap);
     case FFR_MSG_RESET:
-        ffr_init(&b->fw, &b->msg.u.config);
+        if (ffr_sizeof(FFR_S_STATE) > sizeof(b->fw)) { /* built with too small an FFR_STATE_MAX */
+            b->rx_errors++;
+            return error_reply(b, FFR_ERR_LENGTH, FFR_MSG_RESET, 0u, reply, cap);
+        }
+        ffr_init(FW(b), FFR_MSG_CONFIG(&b->msg));
         b->configured = 1u;
         b->have_out = 0u;
         b->tripped = 0u;

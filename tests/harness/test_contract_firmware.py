@@ -124,3 +124,30 @@ def test_the_layout_hash_changes_when_a_name_changes(tiny: str, tmp_path: Path) 
     a, b = firmware_info(tiny), firmware_info(other)
     assert b.state_names[2] == "HALT" and a.rows == b.rows and a.sizes == b.sizes
     assert a.layout_hash != b.layout_hash and b.layout_hash == contract_hash(b)
+
+
+@pytest.fixture(scope="module")
+def tiny_board(tmp_path_factory: pytest.TempPathFactory) -> str:
+    """The tiny firmware as a host board: our codec, board link and host board around it."""
+    out = tmp_path_factory.mktemp("tiny_board") / "tiny-board"
+    fw = REPO / "firmware"
+    srcs = [FIXTURE / "tiny_fw.c", *sorted((fw / "codec").glob("*.c")), *sorted((fw / "link").glob("*.c")),
+            *sorted((fw / "boards" / "host").glob("*.c"))]
+    flags = [f for f in CSTD if not f.startswith("-I")]
+    subprocess.run([CC, *flags, f"-I{fw / 'include'}", f"-I{FIXTURE}", f"-I{fw / 'boards' / 'host'}", "-O2",
+                    "-o", str(out), *map(str, srcs)], check=True, timeout=300)
+    return str(out)
+
+
+def test_the_wire_and_the_host_board_carry_another_firmware(tiny: str, tiny_board: str,
+                                                             monkeypatch: pytest.MonkeyPatch) -> None:
+    """Its config (48 bytes, a sub-struct array) crosses the wire in RESET, the handshake compares
+    the board's hash with the host library's, and the traces are the in-process ones bit for bit."""
+    scn = make_scenario(room=3, firmware={"run_ms": 400, "speed_permille": 250, "ir_x_mm": [5, 4, 3, 2, 1]})
+    _, ref = run_mission(scn, f"ctypes:{tiny}", compiled=False)
+    monkeypatch.setenv("FFR_FIRMWARE_LIB", tiny)
+    monkeypatch.setenv("FFR_HOST_BOARD", tiny_board)
+    res, got = run_mission(scn, "host-board:serial")
+    assert res.link == "host-board:serial" and res.link_counters["crc_errors"] == 0
+    assert got.state_names == ("WAIT", "GO", "STOP", "GAVE_UP")
+    assert got.f.tobytes() == ref.f.tobytes() and got.i.tobytes() == ref.i.tobytes()

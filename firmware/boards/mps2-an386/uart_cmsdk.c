@@ -35,7 +35,7 @@
 #define NVIC_ISER0 (*(volatile uint32_t *)0xE000E100u)
 #define UART0_RX_IRQ 0u /* QEMU mps2-an385/6: UART n receive is IRQ 2n */
 
-#define RING 1024u /* power of two; a frame is at most FFR_FRAME_MAX bytes */
+#define RING 1024u /* power of two; a longer frame (up to FFR_FRAME_MAX) pauses the interrupt until the loop drains it */
 
 static volatile uint8_t g_ring[RING];
 static volatile uint32_t g_head;    /* written by the interrupt only */

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ffr.h"
 #include "ffr_codec.h"
 #include "ffr_link.h"
 
@@ -48,7 +49,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* a board that has been reset with the default configuration */
     memset(&g_msg, 0, sizeof(g_msg));
     g_msg.type = FFR_MSG_RESET;
-    ffr_config_default(&g_msg.u.config);
+    ffr_config_default(FFR_MSG_CONFIG(&g_msg));
     i = ffr_msg_encode(&g_msg, g_buf, sizeof(g_buf));
     (void)ffr_board_link_on_msg(&g_link, g_buf, i, now, g_reply, sizeof(g_reply));
     ffr_deframer_init(&g_rx);

@@ -2,6 +2,7 @@
  * lockstep with repeats, sequence errors, and the watchdog. */
 #include <string.h>
 
+#include "ffr.h"
 #include "ffr_link.h"
 #include "unit.h"
 #include "wire_tests.h"
@@ -64,7 +65,7 @@ void suite_board_link(void)
     /* reset with the default configuration */
     memset(&g_m, 0, sizeof(g_m));
     g_m.type = FFR_MSG_RESET;
-    ffr_config_default(&g_m.u.config);
+    ffr_config_default(FFR_MSG_CONFIG(&g_m));
     send(b, &g_m, t, &r);
     CHECK(r.type == FFR_MSG_READY && b->configured);
     /* lockstep: the robot starts driving within a second */

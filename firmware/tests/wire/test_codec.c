@@ -1,5 +1,6 @@
 #include <string.h>
 
+#include "ffr.h"
 #include "ffr_codec.h"
 #include "unit.h"
 #include "wire_tests.h"
