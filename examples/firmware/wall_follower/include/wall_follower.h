@@ -3,10 +3,11 @@
  * ffr's firmware contract (ffr_contract.h, version 2). It is the example a
  * team copies: its own configuration and state, nothing from ffr's firmware.
  *
- * Behaviour (README.md): turn to put a wall on the left, follow it; at each
- * white line not near home, scan a full turn with the flame sensors; a
- * flame seen: aim, approach, fans on until it is out; then keep following
- * the left wall until a line near the start (odometry): the home circle.
+ * Behaviour (README.md): turn to put a wall on the left, follow it; entering
+ * a room (doorway lines alternate in, out), scan a full turn with the flame
+ * sensors; a flame seen: aim, approach, fans on until it is out; then back
+ * along the other wall (the way in, backwards) past as many doorways as it
+ * came through: the next line is home's ring; stop inside it.
  *
  * C99, no heap, no mutable globals, float only; all state in the caller's
  * struct ffr_state. Hardware units in, hardware units out.
