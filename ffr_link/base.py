@@ -16,10 +16,7 @@ from importlib.metadata import EntryPoint, entry_points
 import numpy as np
 
 from ffr_link.abi import INPUTS_DTYPE, OUTPUTS_DTYPE, LibraryLayout
-
-
-class LinkError(RuntimeError):
-    """The firmware side failed, went silent or answered out of turn."""
+from ffr_link.errors import LinkError
 
 
 @dataclass
@@ -84,7 +81,7 @@ class FirmwareLink(ABC):
         A board runs the firmware of the host build ($FFR_FIRMWARE_LIB, else ours): its library's."""
         fw = self.__dict__.get("_firmware")
         if fw is None:
-            from ffr_link.ctypes_link import firmware_info
+            from ffr_link.library import firmware_info
 
             fw = self.__dict__["_firmware"] = firmware_info()
         return fw
