@@ -6,7 +6,8 @@ An installed ffr has no checkout: the first run compiles the sources shipped in 
 the machine's C compiler into a cache directory (``$FFR_CACHE``, else ``$XDG_CACHE_HOME/ffr``,
 else ``~/.cache/ffr``), keyed by a hash of the sources, the flags and the compiler's version, so a
 new ffr or another compiler never reuses an old build. ``ffr build`` does the same on demand, also
-for a team's own firmware tree laid out like ours (``src/*.c``, ``include/*.h``).
+for a team's own firmware tree laid out like ours (``src/*.c``, ``include/*.h``; its library is
+named after the tree's directory: ``examples/firmware/wall_follower`` gives ``libwall_follower.so``).
 
 The flags are the Makefile's (``tests/firmware/test_build.py`` keeps them equal): the same sources
 and flags give the same bits as a checkout's build.
@@ -42,6 +43,13 @@ class Tree:
     codec ``codec/``, the board link ``link/`` and the host board ``boards/host/``)."""
 
     root: Path
+
+    @property
+    def name(self) -> str:
+        """``ffr`` for ours, else the tree's directory name: its library is ``lib<name>.so``."""
+        if self.root == HERE:
+            return "ffr"
+        return "".join(c if c.isalnum() or c in "_-" else "_" for c in self.root.name) or "firmware"
 
     def firmware(self) -> list[Path]:
         return sorted((self.root / "src").glob("*.c"))
@@ -112,7 +120,7 @@ def build(tree: Tree, out_dir: Path, *, board: bool = True) -> dict[str, Path]:
     fw = tree.firmware()
     if not fw:
         raise BuildError(f"{tree.root / 'src'}: no C sources")
-    out = {"library": out_dir / "libffr.so"}
+    out = {"library": out_dir / f"lib{tree.name}.so"}
     _compile(cc, [*CSTD, *tree.includes(), *LIB_FLAGS, *map(str, fw + tree.wire())], out["library"])
     if board:
         out["host_board"] = out_dir / "ffr-host-board"

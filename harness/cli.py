@@ -180,6 +180,27 @@ def table1_text(results: Sequence[Any]) -> str:
     return "\n".join(rows)
 
 
+def _beside_reference(args: argparse.Namespace, scenarios: Sequence[Any]) -> str:
+    """``ffr table1 --firmware LIB.so`` of another firmware than ours: our firmware's table first,
+    then (the caller prints it) the library's, each under its firmware's name (docs/teams.md). The
+    JSON, plot and replays are the library's only. Without --firmware: nothing (the table as ever)."""
+    from dataclasses import replace
+
+    from ffr_link.ctypes_link import firmware_info
+    from harness.loop import run_mission
+
+    if not getattr(args, "firmware", None):
+        return ""
+    theirs = firmware_info(args.firmware)
+    if theirs.is_reference:
+        return ""
+    ours = firmware_info(None)
+    # the scenario's [firmware] settings are the library's fields, not ours
+    results = [run_mission(replace(scn, firmware={}), "ctypes:", record=False)[0] for scn in scenarios]
+    return (f"{ours.firmware_name} (ffr's firmware)\n{table1_text(results)}\n\n"
+            f"{theirs.firmware_name} ({args.firmware})\n")
+
+
 def _execute_b2b(args: argparse.Namespace) -> int:
     from ffr_link import LinkError, open_link
     from harness.b2b import back_to_back
@@ -272,7 +293,7 @@ def _execute(args: argparse.Namespace) -> int:
         link.close()
     results = [m[2] for m in missions]
     if args.command == "table1":
-        print(table1_text(results))
+        print(_beside_reference(args, scenarios) + table1_text(results))
         payload: Any = []
         for r in results:
             d = r.to_json()

@@ -13,7 +13,8 @@ Fixtures:
   recorded as JUnit properties, and, when the test fails, the one-line
   ``ffr run ...`` command that replays each of its missions.
 
-Options: ``--ffr-link``, ``--ffr-seed``, ``--ffr-noise``, ``--ffr-set KEY=VALUE``
+Options: ``--ffr-link``, ``--ffr-firmware LIB.so`` (= ``--ffr-link ctypes:LIB.so``), ``--ffr-seed``,
+``--ffr-noise``, ``--ffr-set KEY=VALUE``
 (repeatable), ``--ffr-profile quick|thorough`` (the hypothesis profile of the
 property tests), ``--ffr-failures DIR`` (where replay scenarios are written).
 
@@ -48,6 +49,9 @@ def pytest_addoption(parser: pytest.Parser) -> None:
                 help="firmware link URL for every mission (default ctypes:), e.g. host-board:serial, "
                      "host-board:can, qemu:mps2-an386, qemu:netduinoplus2, qemu:microbit, serial:/dev/ttyACM0, "
                      "can:socketcan:can0")
+    g.addoption("--ffr-firmware", dest="ffr_firmware", default=None, metavar="LIB.so",
+                help="a firmware library to run in-process (the same as --ffr-link ctypes:LIB.so), e.g. a "
+                     "team's build from `ffr build --src DIR`")
     g.addoption("--ffr-seed", type=int, default=None, metavar="N", help="seed for every mission (default: the test's)")
     g.addoption("--ffr-noise", default=None, metavar="PROFILE",
                 help="noise profile for every mission (none, typical, datasheet, envelope, harsh, realistic, "
@@ -74,6 +78,12 @@ def pytest_configure(config: pytest.Config) -> None:
     for name, text in MARKERS.items():
         config.addinivalue_line("markers", f"{name}: {text}")
     active_profile = config.getoption("--ffr-profile") or os.environ.get("FFR_PROFILE") or "quick"
+    firmware = config.getoption("ffr_firmware", None)
+    if firmware:  # --ffr-firmware LIB.so is --ffr-link ctypes:LIB.so (ffr's --firmware rule)
+        link = config.getoption("ffr_link")
+        if link not in ("ctypes:", f"ctypes:{firmware}"):
+            raise pytest.UsageError(f"--ffr-firmware = {firmware!r}: runs in-process; leave --ffr-link {link} out")
+        config.option.ffr_link = f"ctypes:{firmware}"
     if active_profile not in PROFILES:
         raise pytest.UsageError(f"FFR_PROFILE = {active_profile!r}: expected one of {', '.join(PROFILES)}")
 

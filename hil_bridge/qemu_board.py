@@ -28,6 +28,7 @@ that closes the link.
 from __future__ import annotations
 
 import ctypes
+import os
 import re
 import shutil
 import signal
@@ -101,7 +102,7 @@ class QemuBoard:
     its Ethernet (datagrams on a local socket: ``eth_sock`` is QEMU's end, ``host_sock`` ours)."""
 
     def __init__(self, machine: str, spec: Machine, log: str = "", transport: str = "uart") -> None:
-        elf = spec.elf
+        elf = Path(os.environ.get("FFR_QEMU_IMAGE") or spec.elf)  # another board image: a team's (docs/teams.md)
         qemu = shutil.which("qemu-system-arm")
         if qemu is None:
             raise LinkError(f"qemu:{machine}: qemu-system-arm not found (apt-get install qemu-system-arm)")

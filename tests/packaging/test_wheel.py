@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 import sysconfig
@@ -15,6 +16,7 @@ from pathlib import Path
 import pytest
 
 REPO = Path(__file__).resolve().parents[2]
+EXAMPLE = REPO / "examples" / "firmware" / "wall_follower"
 
 
 @pytest.fixture(scope="module")
@@ -38,12 +40,18 @@ def installed(tmp_path_factory) -> tuple[Path, dict[str, str]]:
     return venv, env | {"_CWD": str(work)}
 
 
-def _ffr(installed: tuple[Path, dict[str, str]], *args: str) -> subprocess.CompletedProcess[str]:
+def _run(installed: tuple[Path, dict[str, str]], exe: str, *args: str,
+         cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
     venv, env = installed
-    cwd = env["_CWD"]
+    where = cwd or env["_CWD"]
     env = {k: v for k, v in env.items() if k != "_CWD"}
-    return subprocess.run([str(venv / "bin" / "ffr"), *args], cwd=cwd, env=env, capture_output=True, text=True,
+    return subprocess.run([str(venv / "bin" / exe), *args], cwd=where, env=env, capture_output=True, text=True,
                           timeout=600)
+
+
+def _ffr(installed: tuple[Path, dict[str, str]], *args: str, cwd: Path | None = None
+         ) -> subprocess.CompletedProcess[str]:
+    return _run(installed, "ffr", *args, cwd=cwd)
 
 
 def test_the_installed_ffr_comes_from_the_wheel_not_the_checkout(installed) -> None:
@@ -81,3 +89,24 @@ def test_the_installed_ffr_runs_its_host_board_and_builds_a_firmware(installed) 
     assert "library: fw/libffr.so" in p.stdout and lib.exists()
     p = _ffr(installed, "run", "--room", "1", "--firmware", str(lib), "--json", "-")
     assert p.returncode == 0 and json.loads(p.stdout)["outcome"] == "home", p.stderr
+
+
+def test_a_team_builds_and_tests_the_example_firmware_with_the_installed_ffr(installed) -> None:
+    """Issue 16's end to end: the example firmware copied out of the tree, as a team's repository
+    holds it; the installed ffr builds it (`ffr build --src`), its C tests run against the header
+    the wheel ships, and its scenario tests pass through the installed pytest plugin."""
+    team = Path(installed[1]["_CWD"]) / "wall_follower"
+    shutil.copytree(EXAMPLE, team, ignore=shutil.ignore_patterns("build", "out", "__pycache__"))
+    p = _ffr(installed, "build", "--src", ".", "--out", "build", cwd=team)
+    assert p.returncode == 0, p.stderr
+    assert "library: build/libwall_follower.so" in p.stdout and (team / "build" / "libwall_follower.so").exists()
+    venv = installed[0]
+    make = subprocess.run(["make", "-s", "test", f"PYTHON={venv / 'bin' / 'python'}"], cwd=team,
+                          env={k: v for k, v in installed[1].items() if k != "_CWD"}, capture_output=True,
+                          text=True, timeout=300)
+    assert make.returncode == 0 and "15 tests, 0 failed" in make.stdout, make.stdout + make.stderr
+    p = _run(installed, "python", "-m", "pytest", "-q", "-p", "no:cacheprovider", "tests/test_missions.py",
+             "--ffr-firmware", "build/libwall_follower.so", "--junitxml", "out/junit.xml", cwd=team)
+    assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-2000:]
+    assert "6 passed" in p.stdout and "warning" not in p.stdout.lower(), p.stdout[-2000:]
+    assert 'name="outcome" value="home"' in (team / "out" / "junit.xml").read_text()
