@@ -17,15 +17,12 @@ from __future__ import annotations
 import contextlib
 import socket
 import time
-from dataclasses import replace
 from pathlib import Path
 
 from ffr_link.base import LinkError
-from hil_bridge import codec
 from hil_bridge.errors import DecodeError, Status
-from hil_bridge.faults import FaultInjector, flip_bit
+from hil_bridge.frame_link import FrameLink
 from hil_bridge.options import WireOptions
-from hil_bridge.wire_link import WireLink
 
 ETH_TYPE_FFR = 0x88B5  # IEEE 802 "local experimental" EtherType 1 (the board's eth_lan9118.c)
 HOST_MAC = bytes((0x02, 0x00, 0x00, 0x00, 0x0F, 0xF1))  # locally administered
@@ -34,18 +31,13 @@ HEADER = BOARD_MAC + HOST_MAC + ETH_TYPE_FFR.to_bytes(2, "big")
 _MAX_DGRAM = 2048
 
 
-class DatagramLink(WireLink):
+class DatagramLink(FrameLink):
     """WireLink over a local datagram socket whose peer forwards Ethernet frames (QEMU's dgram
     netdev): ``local`` is our socket's path, ``peer`` the other end's."""
 
     def __init__(self, local: Path, peer: Path, opts: WireOptions) -> None:
         super().__init__(opts)
         self.peer = str(peer)
-        self._pending: list[bytes | DecodeError] = []
-        self.sent_at = self.first_byte_at = 0.0  # make bench's tick anatomy, as on the serial link
-        self.reads = 0
-        self.faults_tx: FaultInjector[bytes] = FaultInjector(opts.faults, flip_bit)
-        self.faults_rx: FaultInjector[bytes] = FaultInjector(replace(opts.faults, seed=opts.faults.seed + 1), flip_bit)
         self.sock: socket.socket | None = socket.socket(socket.AF_UNIX, socket.SOCK_DGRAM)
         try:
             self.sock.bind(str(local))
@@ -61,14 +53,6 @@ class DatagramLink(WireLink):
         except OSError as exc:  # the peer's socket is gone (its process ended) or never was
             raise LinkError(f"{self.url}: {self.side} gone {self._where()}: "
                             f"{self._gone(0.5) or f'send failed ({exc})'}; {self.counters}") from None
-
-    def _send_msg(self, msg: bytes) -> None:
-        for f in self.faults_tx.due():
-            self._write(f)
-        for f in self.faults_tx.filter(codec.frame_encode(msg)):
-            self._write(f)
-        self.sent_at = time.perf_counter()
-        self.first_byte_at = 0.0
 
     def _take(self, dgram: bytes) -> None:
         """One datagram: our EtherType, then one frame up to its delimiter (padding after it)."""
@@ -104,14 +88,11 @@ class DatagramLink(WireLink):
     def _recv_msg(self, timeout_s: float) -> bytes | None:
         deadline = time.monotonic() + timeout_s
         while True:
-            if self._pending:
-                item = self._pending.pop(0)
-                if isinstance(item, DecodeError):
-                    raise item
-                return codec.frame_decode(item)
+            msg = self._take_pending()
+            if msg is not None:
+                return msg
             if self.faults_tx.holding:
-                for f in self.faults_tx.due():
-                    self._write(f)
+                self._release_held()
             left = deadline - time.monotonic()
             # a held fault is due soon: look again then; otherwise wait for the deadline (one last
             # look when it has passed: a stalled process is no silence when the answer is there)

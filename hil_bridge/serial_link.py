@@ -10,16 +10,14 @@ from __future__ import annotations
 import contextlib
 import socket
 import time
-from dataclasses import replace
 
 import serial
 
 from ffr_link.base import LinkError
 from hil_bridge import codec
 from hil_bridge.errors import DecodeError
-from hil_bridge.faults import FaultInjector, flip_bit
+from hil_bridge.frame_link import FrameLink
 from hil_bridge.options import WireOptions, parse_url
-from hil_bridge.wire_link import WireLink
 
 _POLL_S = 0.002  # the port's read timeout: how often a wait looks at its deadline
 # pyserial's socket:// write raises a timeout whenever the call as a whole took longer, even
@@ -27,18 +25,12 @@ _POLL_S = 0.002  # the port's read timeout: how often a wait looks at its deadli
 _WRITE_TIMEOUT_S = 5.0
 
 
-class SerialLink(WireLink):
+class SerialLink(FrameLink):
     def __init__(self, port_url: str, opts: WireOptions) -> None:
         super().__init__(opts)
         self.port_url = port_url
         self.ser: serial.SerialBase | None = None
         self._deframer = codec.Deframer()
-        self._pending: list[bytes | DecodeError] = []
-        self.sent_at = self.first_byte_at = 0.0
-        self.reads = 0
-        self.faults_tx: FaultInjector[bytes] = FaultInjector(opts.faults, flip_bit)
-        # the way back draws from its own stream, so each direction's pattern is fixed by the seed
-        self.faults_rx: FaultInjector[bytes] = FaultInjector(replace(opts.faults, seed=opts.faults.seed + 1), flip_bit)
         try:
             self.ser = serial.serial_for_url(port_url, baudrate=opts.baud, timeout=_POLL_S,
                                               write_timeout=_WRITE_TIMEOUT_S)
@@ -56,14 +48,6 @@ class SerialLink(WireLink):
         except (serial.SerialException, OSError) as exc:
             raise LinkError(f"{self.url}: {self.side} gone {self._where()}: "
                             f"{self._gone(0.5) or f'write failed ({exc})'}; {self.counters}") from None
-
-    def _send_msg(self, msg: bytes) -> None:
-        for f in self.faults_tx.due():
-            self._write(f)
-        for f in self.faults_tx.filter(codec.frame_encode(msg)):
-            self._write(f)
-        self.sent_at = time.perf_counter()
-        self.first_byte_at = 0.0
 
     def _read_frames(self) -> None:
         assert self.ser is not None
@@ -90,14 +74,11 @@ class SerialLink(WireLink):
     def _recv_msg(self, timeout_s: float) -> bytes | None:
         deadline = time.monotonic() + timeout_s
         while True:
-            if self._pending:
-                item = self._pending.pop(0)
-                if isinstance(item, DecodeError):
-                    raise item
-                return codec.frame_decode(item)
+            msg = self._take_pending()
+            if msg is not None:
+                return msg
             if self.faults_tx.holding:
-                for f in self.faults_tx.due():
-                    self._write(f)
+                self._release_held()
             if time.monotonic() >= deadline and not self._arrived():
                 return None  # nothing came by the deadline
             self._read_frames()

@@ -192,12 +192,14 @@ def ray_circle(px: float, py: float, dx: float, dy: float, cx: float, cy: float,
 _WEDGE_MARGIN = 1e-9  # m^2 (a cross product): an edge this close to the beam's edge is kept
 
 
-@nb.njit(cache=True)
-def beam_table(half: float, n_rays: int) -> np.ndarray:
+def beam_table_py(half: float, n_rays: int) -> np.ndarray:
     """The beam's rotations, computed once per suite instead of once per measurement: row 0
     cos, sin of ``half``; row 1 + j cos, sin of ray j's offset from the aim. The same
     expressions ``beam_distance`` evaluated per ray, so the same numbers (bit for bit).
-    ``half`` <= 0 or ``n_rays`` <= 1: one ray, the table has only row 0."""
+    ``half`` <= 0 or ``n_rays`` <= 1: one ray, the table has only row 0.
+
+    Plain Python for the sensor suite (no compiled kernel to load at start-up: each costs
+    ~10 ms, docs/architecture.md); ``beam_table`` is the same function compiled, for kernels."""
     n = 1 if half <= 0.0 or n_rays <= 1 else n_rays
     tab = np.empty((n + 1, 2))
     tab[0, 0] = math.cos(half)
@@ -212,22 +214,7 @@ def beam_table(half: float, n_rays: int) -> np.ndarray:
     return tab
 
 
-def beam_table_py(half: float, n_rays: int) -> np.ndarray:
-    """``beam_table`` in plain Python, for the sensor suite: the same operations on the same
-    doubles and the same C library's cos and sin, so the same table (tested bit for bit), and
-    no compiled kernel to load at start-up (each costs ~10 ms, docs/architecture.md)."""
-    n = 1 if half <= 0.0 or n_rays <= 1 else n_rays
-    tab = np.empty((n + 1, 2))
-    tab[0, 0] = math.cos(half)
-    tab[0, 1] = math.sin(half)
-    tab[1, 0] = 1.0  # one ray: no rotation (row 1 is not read)
-    tab[1, 1] = 0.0
-    if n > 1:
-        for j in range(n):
-            o = -half + 2.0 * half * j / (n - 1)
-            tab[1 + j, 0] = math.cos(o)
-            tab[1 + j, 1] = math.sin(o)
-    return tab
+beam_table = nb.njit(cache=True)(beam_table_py)
 
 
 @nb.njit(cache=True)
