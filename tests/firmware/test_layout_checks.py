@@ -4,6 +4,7 @@ project's C flags, and the right one must build."""
 
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
 from pathlib import Path
@@ -13,7 +14,8 @@ from ffr_firmware.build import CSTD
 
 REPO = Path(__file__).resolve().parents[2]
 CC = shutil.which("cc")
-pytestmark = pytest.mark.skipif(CC is None, reason="needs a C compiler (cc)")
+pytestmark = pytest.mark.skipif(CC is None and not os.environ.get("CI"),  # CI has cc: missing fails there
+                                reason="needs a C compiler (cc)")
 FLAGS = [f for f in CSTD if not f.startswith("-I")] + [
     f"-I{REPO / 'firmware' / 'include'}", f"-I{REPO / 'firmware' / 'src'}", "-c"]
 

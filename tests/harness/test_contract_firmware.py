@@ -4,6 +4,7 @@ with cc, is loaded, described, configured by field name and run; its names come 
 
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
 from pathlib import Path
@@ -24,7 +25,8 @@ from sim_plant.robot import load_robot
 REPO = Path(__file__).resolve().parents[2]
 FIXTURE = REPO / "tests" / "firmware" / "fixtures" / "tiny_fw"
 CC = shutil.which("cc")
-pytestmark = pytest.mark.skipif(CC is None, reason="needs a C compiler (cc)")
+pytestmark = pytest.mark.skipif(CC is None and not os.environ.get("CI"),  # CI has cc: missing fails there
+                                reason="needs a C compiler (cc)")
 
 
 def _build(out: Path, *defines: str) -> str:
