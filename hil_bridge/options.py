@@ -32,6 +32,7 @@ class WireOptions:
     transport: str = "pty"           # host-board:serial: pty or tcp
     log: str = ""                    # host board: its stderr to this file
     faults: FaultSpec = field(default_factory=FaultSpec)
+    given: frozenset[str] = frozenset()  # the options the URL named (the rest are defaults)
 
 
 # The link watchdog asked of a simulated board (host-board:, qemu:) when the URL names none. It
@@ -39,11 +40,19 @@ class WireOptions:
 # plant's, which waits for the host, and a host stalled by a busy machine (seen: 0.5 s at a load
 # of 8 on 2 cores) is no robot running away. A real board (serial:, can:) keeps its own (500 ms).
 SIMULATED_WATCHDOG_MS = 5000
+# The first wait for a simulated board's answer when the URL names none. Its transport (a pty, a
+# local socket) loses nothing, so a silence is a stall, not a loss: a board process or QEMU thread
+# not scheduled for a quarter of a second on a busy machine (seen on a fresh CI machine) must not
+# cost a retry. A board that has gone is still known at once: the wait looks for that every
+# tenth of a second (wire_link.GONE_POLL_S).
+SIMULATED_TIMEOUT_S = 1.0
 
 
 def simulated_board(opts: WireOptions) -> WireOptions:
     if not opts.watchdog_ms:
         opts.watchdog_ms = SIMULATED_WATCHDOG_MS
+    if "timeout_s" not in opts.given:
+        opts.timeout_s = SIMULATED_TIMEOUT_S
     return opts
 
 
@@ -56,11 +65,13 @@ def parse_url(url: str) -> tuple[str, WireOptions]:
     target, _, frag = rest.partition("#")
     opts = WireOptions()
     fault_kw: dict[str, float | int] = {}
-    known = {f.name: f for f in fields(WireOptions) if f.name != "faults"}
+    known = {f.name: f for f in fields(WireOptions) if f.name not in ("faults", "given")}
+    given: set[str] = set()
     for item in filter(None, frag.split("&")):
         key, eq, raw = item.partition("=")
         if not eq:
             raise LinkError(f"--link = {url!r}: option {item!r}: expected key=value")
+        given.add(key)
         try:
             if key in FaultSpec.names():
                 fault_kw[key] = int(raw) if key == "seed" else float(raw)
@@ -83,4 +94,5 @@ def parse_url(url: str) -> tuple[str, WireOptions]:
         raise LinkError(f"--link = {url!r}: {exc}") from None
     if opts.timeout_s <= 0 or opts.retries < 0 or opts.handshake_timeout_s <= 0 or opts.step_budget_s <= 0:
         raise LinkError(f"--link = {url!r}: timeouts must be > 0 and retries >= 0")
+    opts.given = frozenset(given)
     return target, opts

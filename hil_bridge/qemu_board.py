@@ -236,19 +236,16 @@ class QemuEthLink(DatagramLink):
 def open_qemu(url: str) -> QemuLink | QemuEthLink:
     machine, opts = parse_url(url)
     simulated_board(opts)
-    frag = url.partition("#")[2]
     # an emulated board translates its code on first use: give the start-up and each step more time
-    if "handshake_timeout_s" not in frag:
+    if "handshake_timeout_s" not in opts.given:
         opts.handshake_timeout_s = 10.0
-    if "step_budget_s" not in frag:
+    if "step_budget_s" not in opts.given:
         opts.step_budget_s = 5.0
-    if "timeout_s" not in frag.replace("handshake_timeout_s", ""):
-        opts.timeout_s = 1.0  # first use of a code path is translated: a long pause, not a loss
     spec = MACHINES.get(machine)
     if spec is None:
         raise LinkError(f"--link = {url!r}: unknown emulated board '{machine}', known: {sorted(MACHINES)}")
     # the transport: the machine's fastest unless the URL names one it has
-    transport = opts.transport if "transport=" in frag else spec.transports[0]
+    transport = opts.transport if "transport" in opts.given else spec.transports[0]
     if transport not in spec.transports:
         raise LinkError(f"--link = {url!r}: option transport = {transport!r}: qemu:{machine} has "
                         f"{', '.join(spec.transports)}")

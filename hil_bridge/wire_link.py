@@ -37,6 +37,11 @@ _HANDSHAKE_RETRIES = 50
 _TRANSIENT = {ErrCode.CRC, ErrCode.FRAMING, ErrCode.SEGMENT, ErrCode.LENGTH}
 
 
+# A long wait looks every this often whether the other side has gone (its process ended), so a
+# dead board ends the run at once whatever the timeout.
+GONE_POLL_S = 0.1
+
+
 class WireLink(FirmwareLink):
     """FirmwareLink over a message transport; subclasses move the bytes."""
 
@@ -117,7 +122,7 @@ class WireLink(FirmwareLink):
                         break
                     looked = True  # the deadline passed: one last look, in case this process was held
                 try:
-                    reply = self._recv_msg(max(left, 0.0))
+                    reply = self._recv_msg(min(max(left, 0.0), GONE_POLL_S))
                 except DecodeError as exc:
                     if exc.status in (Status.CRC, Status.COBS, Status.SHORT, Status.LONG, Status.SEGMENT,
                                       Status.LENGTH):
@@ -126,6 +131,8 @@ class WireLink(FirmwareLink):
                     heard = True
                 else:
                     if reply is None:
+                        if time.monotonic() < deadline and not self._gone():
+                            continue  # a slice of the wait ended and the other side is still there
                         break
                     self.counters.received += 1
                     t = reply[0]

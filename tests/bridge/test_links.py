@@ -363,3 +363,30 @@ def test_a_watchdog_trip_between_missions_is_no_error_of_the_next(url: str) -> N
         run_mission(short_scenario(seconds=0.5), link)
         delta = link.link_counters() - before
         assert delta.errors == {} and delta.idle_watchdog == 1
+
+
+@pytest.mark.parametrize("url", ["host-board:serial", "host-board:can"])
+def test_a_simulated_board_stalled_for_half_a_second_costs_no_retry(url: str) -> None:
+    # Seen on a fresh CI machine: a board process not scheduled for over 0.25 s (the real-line
+    # timeout) cost one retry and one stale answer on a clean host-board:serial link. A simulated
+    # board's transport loses nothing, so its first wait is 1 s (options.SIMULATED_TIMEOUT_S).
+    from hil_bridge.options import SIMULATED_TIMEOUT_S
+
+    with open_link(f"{url}#step_delay_us=500000") as link:  # every answer 0.5 s late
+        assert link.opts.timeout_s == SIMULATED_TIMEOUT_S == 1.0  # type: ignore[attr-defined]
+        run_mission(short_scenario(seconds=0.03), link)
+        assert link.link_counters().errors == {}
+    with open_link(f"{url}#timeout_s=0.05") as link:  # asked for: kept
+        assert link.opts.timeout_s == 0.05  # type: ignore[attr-defined]
+
+
+def test_a_board_gone_is_known_at_once_however_long_the_wait() -> None:
+    # The long first wait must not delay the end of a run whose board has died: the wait looks
+    # every GONE_POLL_S whether the board's process has ended.
+    with open_link("host-board:can") as link:
+        run_mission(short_scenario(seconds=0.05), link)
+        link.board.stop()  # type: ignore[attr-defined]  # the board's thread ends: it answers nothing
+        t0 = time.monotonic()
+        with pytest.raises(LinkError, match="gone"):
+            run_mission(short_scenario(seconds=0.05), link)
+        assert time.monotonic() - t0 < 0.5
