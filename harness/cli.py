@@ -90,7 +90,21 @@ def build_parser() -> argparse.ArgumentParser:
                     help="a firmware tree: DIR/src/*.c and DIR/include/*.h (default: ffr's own firmware)")
     bd.add_argument("--out", default="build/host", metavar="DIR", help="where to put them (default build/host)")
     bd.add_argument("--no-board", action="store_true", help="only the library")
+    sv = sub.add_parser("server", help="keep a warm process that starts ffr commands in ~0.1 s (docs/architecture.md)")
+    sv.add_argument("action", choices=("start", "stop", "status"))
+    sv.add_argument("--idle", type=_idle_seconds, default=3600.0, metavar="SECONDS",
+                    help="start: end after this long without a command (default 3600)")
     return p
+
+
+def _idle_seconds(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected seconds, a number > 0") from None
+    if not v > 0 or v == float("inf"):
+        raise argparse.ArgumentTypeError(f"{text!r}: expected seconds, a number > 0")
+    return v
 
 
 def _execute_build(args: argparse.Namespace) -> int:
@@ -251,6 +265,13 @@ def _list_firmware_config(args: argparse.Namespace) -> int:
 
 
 def _execute(args: argparse.Namespace) -> int:
+    if args.command == "server":
+        from harness.server import ServerError, command
+
+        try:
+            return command(args.action, args.idle)
+        except ServerError as exc:
+            raise UsageError(str(exc)) from None
     from ffr_link import LinkError, open_link
     from harness.loop import run_mission, warm_up
 
