@@ -394,7 +394,8 @@ class Chart:
     def mermaid(self) -> str:
         lines = ["```mermaid", "stateDiagram-v2"]
         lines += [f"    state {c} <<choice>>" for c in self.choices]
-        lines += [f"    {n} : {note}" for n, note in self.nodes.items() if note]
+        # a state's text: its id, then its note (``id : note`` would show the note alone)
+        lines += [f'    state "{n} ({note})" as {n}' for n, note in self.nodes.items() if note]
         lines.append(f"    [*] --> {self.start}")
         for e in self.edges:
             lines.append(f"    {e.src} --> {e.dst}" + (f" : {e.label}" if e.label else ""))
@@ -545,7 +546,7 @@ def room_chart(src: Path, names: Names) -> Chart:
             elif kind == "fail":
                 edges.append(Edge(short(p), "FAILED", label(cs, v)))
     if any(e.dst == "FAILED" for e in edges):
-        nodes["FAILED"] = f"reports {names.states['FFR_ST_FAILED']}: the mission ends"
+        nodes["FAILED"] = "the mission ends"
     return Chart("room", short(first), nodes, _unique(edges))
 
 
@@ -645,7 +646,7 @@ def mission_chart(src: Path, names: Names, room: Chart) -> Chart:
     edges += [Edge(done, "[*]"), Edge(failed, "[*]")]
     room_states = sorted(set(n.removeprefix("reports ") for k, n in room.nodes.items() if k != "FAILED"),
                          key=list(names.states.values()).index)
-    nodes = {"ROOM": "the room task (below), reports " + ", ".join(room_states)}
+    nodes = {"ROOM": "the room task, below: reports " + ", ".join(room_states)}
     return Chart("mission", initial, nodes, _unique(edges), (STEP,))
 
 
