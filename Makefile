@@ -6,6 +6,7 @@
 #   make stress  the wire and PIL missions again with every core busy: same traces, silent links
 #   make envelope  success rate per kind and level of sensor noise (docs/robustness.md)
 #   make firmware  host library + board builds: mps2-an386, netduinoplus2, microbit (flash/RAM printed)
+#   make statechart  the route program's state diagrams in docs/firmware.md, generated from firmware/src
 
 PYTHON ?= python3
 VENV   := .venv
@@ -39,7 +40,7 @@ HOST_CFLAGS := $(CSTD) -O2 -fPIC
 ARM_CFLAGS  := $(CSTD) -Os -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 \
                -ffunction-sections -fdata-sections
 
-.PHONY: all setup run test stress test-thorough envelope bench firmware firmware-host firmware-arm firmware-boards firmware-test selftest lint clean wire-test fuzz
+.PHONY: all setup run test statechart stress test-thorough envelope bench firmware firmware-host firmware-arm firmware-boards firmware-test selftest lint clean wire-test fuzz
 
 all: firmware-host
 
@@ -182,6 +183,11 @@ selftest: firmware-boards
 		-kernel $(BUILD)/arm/microbit-selftest.elf | grep ffr-
 
 # ---- Python ----------------------------------------------------------------
+# The state diagrams in docs/firmware.md, read from firmware/src and the library's names
+# (harness/statechart.py; tests/docs/test_statechart.py fails when they are stale).
+statechart: firmware-host
+	FFR_FIRMWARE_LIB=$(BUILD)/host/libffr.so $(PY) -m harness.statechart --write docs/firmware.md
+
 lint: setup
 	$(VENV)/bin/ruff check .
 
