@@ -11,7 +11,9 @@ pushed against a wall, or by knocking the candle over (then ``detail`` is
 
 from __future__ import annotations
 
+import functools
 import math
+import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -34,7 +36,12 @@ class ScoringRules:
 
     @classmethod
     def load(cls, path: Path = SCORING_FILE) -> ScoringRules:
-        return cls.from_dict(read_toml(path), str(path))
+        # Every mission loads the rules (~0.45 ms); kept per file version, never across an edit.
+        try:
+            st = os.stat(path)
+        except OSError:
+            return cls.from_dict(read_toml(path), str(path))  # its one-line error
+        return _load_version(str(path), st.st_mtime_ns, st.st_size)
 
     @classmethod
     def from_dict(cls, data: dict[str, Any], source: str) -> ScoringRules:
@@ -49,6 +56,11 @@ class ScoringRules:
             mode_factors={k: float(v) for k, v in data["mode_factor"].items() if k != "return_trip"},
             candle_knocked_penalty=float(data["penalty"].get("candle_knocked", 0.0)),
         )
+
+
+@functools.lru_cache(maxsize=8)
+def _load_version(path: str, _mtime_ns: int, _size: int) -> ScoringRules:
+    return ScoringRules.from_dict(read_toml(path), path)
 
 
 @dataclass
