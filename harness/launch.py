@@ -40,7 +40,7 @@ def _served(argv: list[str]) -> int | None:
         umask = os.umask(0)
         os.umask(umask)
         send_msg(sock, {"op": "run", "argv": argv, "cwd": os.getcwd(), "env": dict(os.environ),
-                        "umask": umask}, fds=[0, 1, 2])
+                        "umask": umask, "path": sys.path}, fds=[0, 1, 2])
         pid = recv_int(sock)
     except OSError:  # a server that died or is stopping: its socket is left, nobody answers
         sock.close()

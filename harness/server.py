@@ -374,6 +374,7 @@ def _child(msg: dict, fds: list[int], run: Runner) -> int:
         os.chdir(msg["cwd"])
         os.umask(int(msg["umask"]))
         sys.argv = ["ffr", *msg["argv"]]
+        sys.path[:] = [str(p) for p in msg["path"]]  # the caller's: its first entry is its own
     except Exception as exc:  # the caller's directory went, or a stream: say so where the caller sees it
         with contextlib.suppress(OSError):
             os.write(2, f"ffr: error: the warm server could not take the command: {exc}\n".encode())

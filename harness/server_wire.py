@@ -65,7 +65,9 @@ def fingerprint(package_dirs: list[Path] | None = None, environ: dict[str, str] 
         for f in sorted(d.rglob("*.py")):
             st = f.stat()
             h.update(f"{f}\0{st.st_size}\0{st.st_mtime_ns}\0".encode())
-    for p in sys.path:  # a package installed or removed (a link plug-in, a new numba) changes these
+    # sys.path[0] is the caller's script directory or, under ``python -m``, its working directory:
+    # not the server's business (the fork takes the caller's, harness/server.py); the rest is
+    for p in sys.path[1:]:  # a package installed or removed (a link plug-in, a new numba) changes these
         try:
             h.update(f"{p}\0{os.stat(p).st_mtime_ns}\0".encode())
         except OSError:

@@ -91,12 +91,15 @@ def test_bad_input_through_the_server_is_the_same_one_line_and_exit_2(served: di
 
 def test_a_served_command_works_in_the_callers_directory_with_its_environment(
         served: dict[str, str], tmp_path: Path) -> None:
+    before = _status(served)["served"]
     r = _ffr(served, "run", "--room", "1", "--json", "out.json", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
+    assert _status(served)["served"] == before + 1  # served, though `python -m` put another directory first
     assert json.loads((tmp_path / "out.json").read_text())["outcome"] == "home"
     missing = tmp_path / "nowhere" / "libffr.so"
     r = _ffr({**served, "FFR_FIRMWARE_LIB": str(missing)}, "run", "--room", "1")
     assert r.returncode == 2 and str(missing) in r.stderr  # the caller's variable, not the server's
+    assert _status(served)["served"] == before + 2
 
 
 def _long_sweep(env: dict[str, str], out: Path) -> subprocess.Popen:
