@@ -66,11 +66,6 @@
 #define ARC_BAND_MM 30.0f         /* an arc's path: the half width plus this       */
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
 #define ESCAPE_SPEED_MM_S 120.0f  /* chosen: slow, so a wall unseen costs no bump  */
-/* a wall's direction from the robot (the normal to it) within ~73 degrees of
- * the body's axis (|cos| >= 0.3, chosen: measured, docs/firmware.md) is left
- * straight along the axis; only a wall nearly square to the side gets the S.
- * An S's first arc swings the corner nearest a slanted wall into it. */
-#define STRAIGHT_NX 0.3f
 
 enum { PH_SWEEP = 0, PH_CENTRE = 1, PH_SHIFT_TURN = 2, PH_SHIFT_DRIVE = 3, PH_AIM = 4, PH_TURN = 5, PH_DONE = 6,
        PH_CLEAR = 7, PH_ESCAPE = 8 };
@@ -409,8 +404,8 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
     ffr_home_orient_t *o = &st->orient;
     float len;
     o->escapes++;
-    if (ffr_absf(nx) >= STRAIGHT_NX) {
-        /* ahead or behind, or beside but at a slant: straight away from it */
+    if (ffr_absf(nx) >= 0.5f) {
+        /* ahead or behind: straight away from it */
         o->reverse = nx > 0.0f;
         o->leg = 0u;
         o->target_rad = 0.0f; /* curvature (1/mm): straight */
