@@ -24,6 +24,8 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
+from ffr_firmware.cache import cache_root
+
 HERE = Path(__file__).resolve().parent
 CHECKOUT = HERE.parent if (HERE.parent / "Makefile").exists() and (HERE / "src").is_dir() else None
 
@@ -72,13 +74,6 @@ class Tree:
 def _cc() -> str:
     return os.environ.get("CC", "cc")
 
-
-def cache_root() -> Path:
-    env = os.environ.get("FFR_CACHE")
-    if env:
-        return Path(env)
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    return (Path(xdg) if xdg else Path.home() / ".cache") / "ffr"
 
 
 def _key(tree: Tree, cc: str) -> str:

@@ -393,7 +393,7 @@ def _startup_env(extra_env: dict[str, str] | None) -> dict[str, str]:
     env["PYTHONPATH"] = str(REPO)
     env["FFR_NO_SERVER"] = "1"
     env.update(extra_env or {})
-    return {k: v for k, v in env.items() if v != ""}
+    return env
 
 
 def bench_startup(repeat: int) -> float:
@@ -422,7 +422,7 @@ def bench_startup(repeat: int) -> float:
     # The same command with a warm server (`ffr server start`, harness/server.py): this process
     # only hands the command over; the CPU is the server's fork's, not counted here.
     with tempfile.TemporaryDirectory(prefix="ffrb-", dir="/tmp") as d:
-        served = {"FFR_SERVER_DIR": d, "FFR_NO_SERVER": ""}
+        served = {"FFR_SERVER_DIR": d, "FFR_NO_SERVER": "0"}
         t0 = time.perf_counter()
         subprocess.run([py, "-m", "harness", "server", "start"], cwd=REPO, env=_startup_env(served), check=True,
                        stdout=subprocess.DEVNULL)

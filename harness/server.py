@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import contextlib
 import io
-import json
 import os
 import selectors
 import shutil
@@ -38,7 +37,7 @@ from pathlib import Path
 from harness.server_wire import (
     MAX_SOCKET_PATH,
     SOCKET_SUFFIX,
-    recv_exact,
+    recv_msg,
     send_int,
     send_msg,
     server_dir,
@@ -47,7 +46,6 @@ from harness.server_wire import (
 
 DEFAULT_IDLE_S = 3600.0
 READY_TIMEOUT_S = 300.0  # a cold numba cache compiles every kernel during the warm-up: minutes on a slow machine
-_LEN_SIZE = 4
 
 
 class ServerError(Exception):
@@ -62,12 +60,8 @@ def _request(path: Path, obj: dict, timeout: float = 5.0) -> dict | None:
     try:
         s.connect(str(path))
         send_msg(s, obj)
-        head = recv_exact(s, _LEN_SIZE)
-        if head is None:
-            return None
-        body = recv_exact(s, int.from_bytes(head, "big"))
-        return None if body is None else json.loads(body)
-    except OSError:
+        return recv_msg(s)
+    except (OSError, ValueError):
         return None
     finally:
         s.close()
@@ -187,9 +181,6 @@ def _forget_file_caches() -> None:
         for obj in list(vars(mod).values()):
             if isinstance(obj, functools._lru_cache_wrapper):
                 obj.cache_clear()
-    from harness import sweep
-
-    sweep._LINKS.clear()
 
 
 @dataclass
@@ -336,21 +327,14 @@ def _peer_uid(conn: socket.socket) -> int:
 
 def _recv_request(conn: socket.socket) -> tuple[dict, list[int]]:
     conn.settimeout(5.0)
-    data, fds, _flags, _addr = socket.recv_fds(conn, 1 << 16, 3)
-    if len(data) < _LEN_SIZE:
-        more = recv_exact(conn, _LEN_SIZE - len(data))
-        if more is None:
-            raise ValueError("short request")
-        data += more
-    n = int.from_bytes(data[:_LEN_SIZE], "big")
-    body = data[_LEN_SIZE:]
-    if len(body) < n:
-        more = recv_exact(conn, n - len(body))
-        if more is None:
-            raise ValueError("short request")
-        body += more
+    head, fds, _flags, _addr = socket.recv_fds(conn, 1 << 16, 3)
+    msg = recv_msg(conn, head)
+    if msg is None:
+        for fd in fds:
+            os.close(fd)
+        raise ValueError("short request")
     conn.settimeout(None)
-    return json.loads(body), fds
+    return msg, fds
 
 
 def _child(msg: dict, fds: list[int], run: Runner) -> int:

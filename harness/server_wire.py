@@ -19,6 +19,8 @@ import struct
 import sys
 from pathlib import Path
 
+from ffr_firmware.cache import cache_root
+
 # Our top-level packages (pyproject.toml's [tool.setuptools] packages, by their import names).
 PACKAGES = ("harness", "sim_plant", "ffr_link", "hil_bridge", "ffr_firmware")
 SOCKET_SUFFIX = ".sock"
@@ -32,17 +34,9 @@ FORWARDED_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUI
 
 
 def server_dir() -> Path:
-    """Where servers put their sockets: ``$FFR_SERVER_DIR``, else ``server/`` in ffr's cache
-    (the same root as firmware/build.py's ``cache_root``: ``$FFR_CACHE``, ``$XDG_CACHE_HOME/ffr``
-    or ``~/.cache/ffr``)."""
+    """Where servers put their sockets: ``$FFR_SERVER_DIR``, else ``server/`` in ffr's cache."""
     env = os.environ.get("FFR_SERVER_DIR")
-    if env:
-        return Path(env)
-    root = os.environ.get("FFR_CACHE")
-    if root:
-        return Path(root) / "server"
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    return (Path(xdg) if xdg else Path.home() / ".cache") / "ffr" / "server"
+    return Path(env) if env else cache_root() / "server"
 
 
 def _package_dirs() -> list[Path]:
@@ -100,6 +94,23 @@ def recv_exact(sock: socket.socket, n: int) -> bytes | None:
             return None
         buf += chunk
     return bytes(buf)
+
+
+def recv_msg(sock: socket.socket, head: bytes = b"") -> dict | None:
+    """A message ``send_msg`` sent; ``head``: its first bytes, already read (with the fds)."""
+    if len(head) < _LEN.size:
+        more = recv_exact(sock, _LEN.size - len(head))
+        if more is None:
+            return None
+        head += more
+    n = _LEN.unpack(head[:_LEN.size])[0]
+    body = head[_LEN.size:]
+    if len(body) < n:
+        more = recv_exact(sock, n - len(body))
+        if more is None:
+            return None
+        body += more
+    return json.loads(body)
 
 
 def send_int(sock: socket.socket, value: int) -> None:

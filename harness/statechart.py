@@ -33,13 +33,11 @@ reachable)."""
 
 from __future__ import annotations
 
-import argparse
 import re
 import sys
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import NoReturn
 
 REPO = Path(__file__).resolve().parents[1]
 SRC = REPO / "firmware" / "src"
@@ -735,19 +733,19 @@ def replace_block(doc: str, block: str, where: str = "docs/firmware.md") -> str:
     return head + block + tail
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message: str) -> NoReturn:  # one line, not usage + error
-        print(f"python -m harness.statechart: {message}", file=sys.stderr)
-        sys.exit(2)
-
-
 def main(argv: Sequence[str] | None = None) -> int:
+    from harness.cli_args import UsageError, _Parser  # one line for a bad argument, not usage + error
+
     ap = _Parser(prog="python -m harness.statechart", description=__doc__.splitlines()[0])
     g = ap.add_mutually_exclusive_group()
     g.add_argument("--write", metavar="FILE", help="put the diagrams into FILE's statechart block")
     g.add_argument("--check", metavar="FILE", help="exit 1 if FILE's statechart block is not what is printed now")
     ap.add_argument("--src", default=str(SRC), help="the firmware's C sources (default: firmware/src)")
-    a = ap.parse_args(argv)
+    try:
+        a = ap.parse_args(argv)
+    except UsageError as exc:
+        print(f"python -m harness.statechart: {exc}", file=sys.stderr)
+        return 2
     src = Path(a.src)
     if not src.is_dir():
         print(f"python -m harness.statechart: --src {a.src}: not a directory", file=sys.stderr)

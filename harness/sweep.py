@@ -213,14 +213,11 @@ def _world(arena_file: str | None, robot_file: str | None) -> tuple[Any, Any]:
     return load_arena(arena_file), load_robot(robot_file)
 
 
-_LINKS: dict[str, Any] = {}
-
-
+@functools.cache
 def _link(url: str) -> Any:
+    """One open link per URL and worker, kept for its missions."""
     from ffr_link import open_link
-    if url not in _LINKS:
-        _LINKS[url] = open_link(url)
-    return _LINKS[url]
+    return open_link(url)
 
 
 def run_job(job: dict[str, Any], local: dict[str, str] | None = None) -> dict[str, Any]:

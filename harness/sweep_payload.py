@@ -76,7 +76,7 @@ _MATERIALISED: dict[str, str] = {}
 
 
 def _shipped_dir() -> Path:
-    from ffr_firmware.build import cache_root
+    from ffr_firmware.cache import cache_root
 
     return cache_root() / "shipped"
 
