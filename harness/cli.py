@@ -90,7 +90,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help="a firmware tree: DIR/src/*.c and DIR/include/*.h (default: ffr's own firmware)")
     bd.add_argument("--out", default="build/host", metavar="DIR", help="where to put them (default build/host)")
     bd.add_argument("--no-board", action="store_true", help="only the library")
-    sv = sub.add_parser("server", help="keep a warm process that starts ffr commands in ~0.1 s (docs/architecture.md)")
+    sv = sub.add_parser("server", help="keep a warm process that runs ffr commands without numba's start-up "
+                                         "(docs/architecture.md)")
     sv.add_argument("action", choices=("start", "stop", "status"))
     sv.add_argument("--idle", type=_idle_seconds, default=3600.0, metavar="SECONDS",
                     help="start: end after this long without a command (default 3600)")
