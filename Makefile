@@ -40,7 +40,7 @@ HOST_CFLAGS := $(CSTD) -O2 -fPIC
 ARM_CFLAGS  := $(CSTD) -Os -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 \
                -ffunction-sections -fdata-sections
 
-.PHONY: all setup run test statechart stress test-thorough envelope bench firmware firmware-host firmware-arm firmware-boards firmware-test selftest lint clean wire-test fuzz
+.PHONY: all setup run test statechart stress test-thorough envelope acceptance bench firmware firmware-host firmware-arm firmware-boards firmware-test selftest lint clean wire-test fuzz
 
 all: firmware-host
 
@@ -213,6 +213,11 @@ test-thorough: setup firmware-host
 
 envelope: setup firmware-host
 	$(PY) -m harness.envelope
+
+# The robustness goals of issues 12 and 13, each row its own ffr command (harness/acceptance.py);
+# ACCEPT_ARGS e.g. --rows realistic,table1 or --firmware before=OLD/libffr.so --firmware now=build/host/libffr.so
+acceptance: setup firmware-host
+	$(PY) -m harness.acceptance $(ACCEPT_ARGS)
 
 run: setup firmware-host
 	@mkdir -p $(OUT)

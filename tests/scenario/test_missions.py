@@ -13,6 +13,7 @@ metrics land in the JUnit report, and a failure prints its ``ffr run`` replay.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -77,6 +78,22 @@ def test_doors_moved_along_their_walls(ffr_mission, room: int) -> None:
     arena = load_arena(DOORS_MOVED)
     assert arena.room(1).door != load_arena().room(1).door
     res, _ = ffr_mission(make_scenario(arena=arena, room=room), record=False)
+    assert res.outcome == "home", res.detail
+    assert res.wall_contacts == 0
+
+
+ARENA_2001 = Path(__file__).parents[2] / "sim_plant" / "data" / "arena_2001.toml"
+
+
+@pytest.mark.parametrize("room", [1, 2, 3, 4])
+def test_the_2001_plan_every_room_comes_home(ffr_mission, room: int) -> None:
+    """The contest's own 2001 plan: other hallway and door widths, home facing 180 degrees. The
+    firmware of before issue 13 hit a wall in every room here (docs/arena.md); the route has
+    no distance of this plan, and the robot orients itself at home."""
+    arena = load_arena(ARENA_2001)
+    scn = make_scenario(arena=arena, room=room)
+    assert abs(scn.start[2] - math.pi) < 1e-9
+    res, _ = ffr_mission(scn, record=False)
     assert res.outcome == "home", res.detail
     assert res.wall_contacts == 0
 
