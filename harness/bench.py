@@ -86,11 +86,11 @@ def _sensors_loop(tf: np.ndarray, phi: np.ndarray, lit: np.ndarray, hw: np.ndarr
                   edges: np.ndarray, wall_polys: np.ndarray, doors: np.ndarray, npar: np.ndarray,
                   normals: np.ndarray, uniforms: np.ndarray, npos: np.ndarray,
                   srcs: np.ndarray, beam: np.ndarray, scratch: np.ndarray,
-                  enorm: np.ndarray, esoa: np.ndarray) -> None:
+                  enorm: np.ndarray, esoa: np.ndarray, wsoa: np.ndarray, keep: np.ndarray) -> None:
     for k in range(tf.shape[0]):
         if _sample_kernel(tf[k, 0], tf[k, 1], tf[k, 2], tf[k, 3], phi[k, 0], phi[k, 1], lit[k],
                           hw, ir_cfg, ir_state, cfg, st, edges, wall_polys, doors, npar,
-                          normals, uniforms, npos, srcs, beam, scratch, enorm, esoa):
+                          normals, uniforms, npos, srcs, beam, scratch, enorm, esoa, wsoa, keep):
             npos[0] = 0  # reuse the block: the cost is the same, the numbers need not be
             npos[1] = 0
 
@@ -438,9 +438,27 @@ def bench_startup(repeat: int) -> float:
     return w
 
 
-def main() -> None:
+PARTS = ("parts", "missions")
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m harness.bench``: everything and the goals (``make bench``);
+    ``python -m harness.bench parts missions``: only those sections, no goal summary (to set
+    two trees side by side: run it in each, alternately)."""
+    args = sys.argv[1:] if argv is None else argv
     quick = os.environ.get("FFR_BENCH_QUICK", "") not in ("", "0")
     repeat = 2 if quick else 5
+    if args:
+        bad = [a for a in args if a not in PARTS]
+        if bad:
+            print(f"python -m harness.bench: error: unknown section {bad[0]!r} (sections: {', '.join(PARTS)})",
+                  file=sys.stderr)
+            return 2
+        if "parts" in args:
+            bench_parts(repeat)
+        if "missions" in args:
+            bench_missions(repeat)
+        return 0
     n = int(os.environ.get("FFR_BENCH_MISSIONS", "40" if quick else "1000"))
     bench_parts(repeat)
     rtf, mreal = bench_missions(repeat)
@@ -457,7 +475,8 @@ def main() -> None:
     if not quick:
         from harness.bench_links import bench_links
         bench_links()
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -96,7 +96,7 @@ def mission_kernel(fn_step: int, st_ptr: int, in_ptr: int, out_ptr: int,
                    edges: np.ndarray, wall_polys: np.ndarray, doors: np.ndarray, npar: np.ndarray,
                    normals: np.ndarray, uniforms: np.ndarray, npos: np.ndarray,
                    srcs: np.ndarray, beam: np.ndarray, scratch: np.ndarray,
-                   enorm: np.ndarray, esoa: np.ndarray,
+                   enorm: np.ndarray, esoa: np.ndarray, wsoa: np.ndarray, keep: np.ndarray,
                    rng: np.random.Generator,
                    ev: np.ndarray, ev_state: np.ndarray, ev_active: np.ndarray,
                    S: np.ndarray, P: np.ndarray, poly: np.ndarray, walls: np.ndarray,
@@ -115,7 +115,8 @@ def mission_kernel(fn_step: int, st_ptr: int, in_ptr: int, out_ptr: int,
         t = t_ms / 1000.0
         if _sample_kernel(t, S[S_X], S[S_Y], S[S_TH], S[S_LEFT + 2], S[S_RIGHT + 2],
                           cs[CS_LIT] != 0.0, hw, ir_cfg, ir_state, scfg, sst, edges, wall_polys,
-                          doors, npar, normals, uniforms, npos, srcs, beam, scratch, enorm, esoa):
+                          doors, npar, normals, uniforms, npos, srcs, beam, scratch, enorm, esoa,
+                          wsoa, keep):
             # NoiseStream.refill: the normals, then the uniforms, from the one Generator
             for i in range(normals.shape[0]):
                 normals[i] = rng.standard_normal()

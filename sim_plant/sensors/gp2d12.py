@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from sim_plant.geometry import point_in_convex, ray_cast
+from sim_plant.geometry import point_in_convex, ray_cast, ray_cast_first
 
 # Datasheet typical curve (distance m, output V).
 DATASHEET_TABLE: tuple[tuple[float, float], ...] = (
@@ -217,35 +217,46 @@ def beam_table_py(half: float, n_rays: int) -> np.ndarray:
 beam_table = nb.njit(cache=True)(beam_table_py)
 
 
+def wedge_soa(edges: np.ndarray) -> np.ndarray:
+    """(M, 4) edges -> (4, M) rows x1, y1, x2, y2, contiguous per row: the layout ``_wedge_into``
+    reads (the very doubles of ``edges``, so its tests are the same arithmetic)."""
+    return np.ascontiguousarray(np.asarray(edges, dtype=np.float64).reshape(-1, 4).T)
+
+
 @nb.njit(cache=True)
 def _wedge_into(px: float, py: float, dx0: float, dy0: float, ch: float, sh: float,
-                edges: np.ndarray, out: np.ndarray) -> int:
+                edges: np.ndarray, wsoa: np.ndarray, keep: np.ndarray, out: np.ndarray) -> int:
     """The wall edges a ray within +-half (< 90 degrees; ``ch``, ``sh`` its cos and sin) of
     the unit aim (dx0, dy0) from (px, py) can hit, copied in order into ``out[:n]``; returns n.
     An edge is left out only when both its ends are behind the ranger, or both beyond the
     same side of the beam (the beam is convex, so the edge cannot cross it). Casting the
-    beam's rays against these only gives the same distances, for less work."""
+    beam's rays against these only gives the same distances, for less work.
+
+    ``wsoa``: the same edges as ``wedge_soa`` lays them out; ``keep``: scratch of one byte per
+    edge. The tests run without branches over the rows (the compiler takes four edges at a
+    time: ~1.7x faster than testing edge by edge, make bench), then the kept edges are copied."""
     lx = dx0 * ch - dy0 * sh  # the beam's left (counter-clockwise) boundary
     ly = dx0 * sh + dy0 * ch
     rx = dx0 * ch + dy0 * sh  # and its right one
     ry = -dx0 * sh + dy0 * ch
+    m = wsoa.shape[1]
+    for i in range(m):  # wsoa[r, i], not row views: a view costs a reference count per call
+        ax = wsoa[0, i] - px
+        ay = wsoa[1, i] - py
+        bx = wsoa[2, i] - px
+        by = wsoa[3, i] - py
+        behind = (ax * dx0 + ay * dy0 < -_WEDGE_MARGIN) & (bx * dx0 + by * dy0 < -_WEDGE_MARGIN)
+        left = (lx * ay - ly * ax > _WEDGE_MARGIN) & (lx * by - ly * bx > _WEDGE_MARGIN)
+        right = (rx * ay - ry * ax < -_WEDGE_MARGIN) & (rx * by - ry * bx < -_WEDGE_MARGIN)
+        keep[i] = not (behind | left | right)
     n = 0
-    for i in range(edges.shape[0]):
-        ax = edges[i, 0] - px
-        ay = edges[i, 1] - py
-        bx = edges[i, 2] - px
-        by = edges[i, 3] - py
-        if ax * dx0 + ay * dy0 < -_WEDGE_MARGIN and bx * dx0 + by * dy0 < -_WEDGE_MARGIN:
-            continue
-        if lx * ay - ly * ax > _WEDGE_MARGIN and lx * by - ly * bx > _WEDGE_MARGIN:
-            continue
-        if rx * ay - ry * ax < -_WEDGE_MARGIN and rx * by - ry * bx < -_WEDGE_MARGIN:
-            continue
-        out[n, 0] = edges[i, 0]
-        out[n, 1] = edges[i, 1]
-        out[n, 2] = edges[i, 2]
-        out[n, 3] = edges[i, 3]
-        n += 1
+    for i in range(m):
+        if keep[i]:
+            out[n, 0] = edges[i, 0]
+            out[n, 1] = edges[i, 1]
+            out[n, 2] = edges[i, 2]
+            out[n, 3] = edges[i, 3]
+            n += 1
     return n
 
 
@@ -254,24 +265,30 @@ def _edges_in_wedge(px: float, py: float, dx0: float, dy0: float, half: float,
                     edges: np.ndarray) -> np.ndarray:
     """``_wedge_into`` as a new array (tests and reports; the sensors reuse a scratch buffer)."""
     out = np.empty((edges.shape[0], 4))
-    n = _wedge_into(px, py, dx0, dy0, math.cos(half), math.sin(half), edges, out)
+    wsoa = np.ascontiguousarray(edges.T)
+    keep = np.empty(edges.shape[0], dtype=np.uint8)
+    n = _wedge_into(px, py, dx0, dy0, math.cos(half), math.sin(half), edges, wsoa, keep, out)
     return out[:n].copy()
 
 
 @nb.njit(cache=True)
 def beam_distance_tab(px: float, py: float, dx0: float, dy0: float, tab: np.ndarray,
                       edges: np.ndarray, wall_polys: np.ndarray, scratch: np.ndarray,
+                      wsoa: np.ndarray, keep: np.ndarray,
                       max_range: float, cx: float, cy: float, obs_r: float) -> float:
     """``beam_distance`` with the beam's rotations from ``beam_table`` (tab.shape[0] - 1 rays)
-    and the edges inside the wedge collected into ``scratch`` (at least edges' shape): what
-    the sensors call per measurement, with no trigonometry of the beam and no allocation."""
+    and the edges inside the wedge collected into ``scratch`` (at least edges' shape; ``wsoa``
+    and ``keep`` as ``_wedge_into`` takes them): what the sensors call per measurement, with no
+    trigonometry of the beam and no allocation."""
     for w in range(wall_polys.shape[0]):
         if point_in_convex(px, py, wall_polys[w]):
             return 0.0
     n_rays = tab.shape[0] - 1
+    hits = edges  # the edges the rays are cast against: the first m rows
+    m = edges.shape[0]
     if n_rays > 1:
-        m = _wedge_into(px, py, dx0, dy0, tab[0, 0], tab[0, 1], edges, scratch)
-        edges = scratch[:m]
+        m = _wedge_into(px, py, dx0, dy0, tab[0, 0], tab[0, 1], edges, wsoa, keep, scratch)
+        hits = scratch
     num = 0.0
     den = 0.0
     for j in range(n_rays):
@@ -282,7 +299,7 @@ def beam_distance_tab(px: float, py: float, dx0: float, dy0: float, tab: np.ndar
             so = tab[1 + j, 1]
             dx = dx0 * co - dy0 * so
             dy = dx0 * so + dy0 * co
-        d = ray_cast(px, py, dx, dy, edges, max_range)
+        d = ray_cast_first(px, py, dx, dy, hits, m, max_range)
         if obs_r > 0.0:
             d = min(d, ray_circle(px, py, dx, dy, cx, cy, obs_r, max_range))
         if d <= 0.0:
@@ -317,4 +334,5 @@ def beam_distance(px: float, py: float, dx0: float, dy0: float, half: float, n_r
     (The sensor suite calls ``beam_distance_tab`` with the table and scratch made once.)
     """
     return beam_distance_tab(px, py, dx0, dy0, beam_table(half, n_rays), edges, wall_polys,
-                             np.empty((edges.shape[0], 4)), max_range, cx, cy, obs_r)
+                             np.empty((edges.shape[0], 4)), np.ascontiguousarray(edges.T),
+                             np.empty(edges.shape[0], dtype=np.uint8), max_range, cx, cy, obs_r)

@@ -42,6 +42,7 @@ from sim_plant.sensors.gp2d12 import (
     beam_distance_tab,
     beam_table_py,
     mv_of_distance,
+    wedge_soa,
 )
 from sim_plant.sensors.line_sensor import door_segments, white_fraction
 from sim_plant.sensors.models import FLICKER_RATIO, draw_flame, draw_ranger_timing
@@ -92,7 +93,7 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
                    doors: np.ndarray, npar: np.ndarray, normals: np.ndarray,
                    uniforms: np.ndarray, npos: np.ndarray, srcs: np.ndarray,
                    beam: np.ndarray, scratch: np.ndarray, enorm: np.ndarray,
-                   esoa: np.ndarray) -> bool:
+                   esoa: np.ndarray, wsoa: np.ndarray, keep: np.ndarray) -> bool:
     c = math.cos(theta)
     s = math.sin(theta)
     first = st[S_INIT] == 0.0
@@ -117,7 +118,7 @@ def _sample_kernel(t: float, x: float, y: float, theta: float, phi_l: float, phi
             px = x + c * bx - s * by
             py = y + s * bx + c * by
             d = beam_distance_tab(px, py, c * ca - s * sa, s * ca + c * sa, beam, edges,
-                                  wall_polys, scratch, cfg[C_MAX_RANGE], cfg[C_CX], cfg[C_CY],
+                                  wall_polys, scratch, wsoa, keep, cfg[C_MAX_RANGE], cfg[C_CX], cfg[C_CY],
                                   cfg[C_OBS_R])
             mv = mv_of_distance(d)
             ir_state[i, _DIST] = d
@@ -308,13 +309,15 @@ class SensorSuite:
         if srcs.ndim != 2 or srcs.shape[1] != 4:
             raise ValueError(f"ir_sources must be (n, 4): x, y, z, strength; got {srcs.shape}")
         self._srcs = np.ascontiguousarray(srcs)
-        # the beam's rotations once (gp2d12.beam_table_py), and the scratch its wedge filter fills
+        # the beam's rotations once (gp2d12.beam_table_py), the scratch its wedge filter fills, and
+        # the edges as rows for that filter (gp2d12.wedge_soa) with its one-byte-per-edge scratch
         self._beam = beam_table_py(float(cfg[C_BEAM_HALF]), int(cfg[C_BEAM_N]))
         self._args = (self._ir_cfg, self._ir_state, cfg, self._st, arena.wall_edges,
                       arena.wall_polys, door_segments(arena), self.noise.packed(),
                       self._stream.normals, self._stream.uniforms, self._stream.pos, self._srcs,
                       self._beam, np.empty((arena.wall_edges.shape[0], 4)),
-                      edge_normals(arena.wall_edges), edges_soa(arena.wall_edges))
+                      edge_normals(arena.wall_edges), edges_soa(arena.wall_edges),
+                      wedge_soa(arena.wall_edges), np.empty(arena.wall_edges.shape[0], dtype=np.uint8))
         self._checked_out: np.ndarray | None = None
 
     def sample(self, t: float, x: float, y: float, theta: float, phi_l: float, phi_r: float,

@@ -401,10 +401,11 @@ def test_beam_with_reused_scratch_is_the_fresh_beam(arena: Arena, seed: int) -> 
     """The sensors keep one scratch buffer for the wedge's edges across measurements: a buffer
     left full by earlier measurements must change no distance (random poses, aims, beams, with
     and without the candle's base as a target)."""
-    from sim_plant.sensors.gp2d12 import beam_distance_tab, beam_table_py
+    from sim_plant.sensors.gp2d12 import beam_distance_tab, beam_table_py, wedge_soa
     rng = np.random.default_rng(seed)
     e, polys = arena.wall_edges, arena.wall_polys
     scratch = np.empty((e.shape[0], 4))
+    keep = np.empty(e.shape[0], dtype=np.uint8)
     for _ in range(300):
         px, py = rng.uniform(0.03, 2.41, 2)
         a = rng.uniform(-math.pi, math.pi)
@@ -413,7 +414,7 @@ def test_beam_with_reused_scratch_is_the_fresh_beam(arena: Arena, seed: int) -> 
         obs = float(rng.choice([0.0, 0.04]))
         cx, cy = rng.uniform(0.3, 2.1, 2)
         got = beam_distance_tab(px, py, math.cos(a), math.sin(a), beam_table_py(h, n), e, polys,
-                                scratch, 4.0, cx, cy, obs)
+                                scratch, wedge_soa(e), keep, 4.0, cx, cy, obs)
         want = beam_distance(px, py, math.cos(a), math.sin(a), h, n, e, polys, 4.0, cx, cy, obs)
         assert got == want
 
