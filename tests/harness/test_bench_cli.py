@@ -1,0 +1,14 @@
+"""``python -m harness.bench SECTION...``: bad input is one line and exit 2 (the sections
+themselves are timings: they live in ``make bench``, not in tests)."""
+
+from __future__ import annotations
+
+import pytest
+
+from harness import bench
+
+
+def test_an_unknown_section_is_one_line_and_exit_2(capsys: pytest.CaptureFixture[str]) -> None:
+    assert bench.main(["missions", "nope"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "'nope'" in err and "parts, missions" in err
