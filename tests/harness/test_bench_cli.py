@@ -12,3 +12,13 @@ def test_an_unknown_section_is_one_line_and_exit_2(capsys: pytest.CaptureFixture
     assert bench.main(["missions", "nope"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "'nope'" in err and "parts, missions" in err
+
+
+@pytest.mark.parametrize("argv, names", [(["--seconds", "0"], "--seconds = 0.0"), (["--room", "5"], "--room")])
+def test_perf_map_bad_arguments_are_one_line_and_exit_2(capsys: pytest.CaptureFixture[str], argv: list[str],
+                                                        names: str) -> None:
+    from harness import perf_map
+
+    assert perf_map.main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and names in err
