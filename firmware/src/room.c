@@ -120,6 +120,7 @@ static void enter(ffr_state_t *st, uint8_t p)
         r->best_signal = 0.0f;
         r->best_heading_rad = st->odo.heading_rad;
         r->best_front_mm = 0.0f;
+        ffr_scan_sq_reset(&r->square);
     }
     r->phase = p;
     r->phase_start_mm = st->odo.dist_mm;
@@ -193,9 +194,27 @@ static uint8_t on_enter_in(ffr_state_t *st, room_tick_t *t)
     return RP_STAY;
 }
 
+/* The scan ends: odometry's heading squared to the room's walls seen in it
+ * (turn_calibration.c), and the heading of the best flame signal with it
+ * (its error was less by what grew since). The rotation counted toward the
+ * next wall fix starts again: the heading is square now. */
+static void square_up(ffr_state_t *st)
+{
+    ffr_room_state_t *r = &st->room;
+    float err, grow, since;
+    if (!ffr_scan_sq_fix(&r->square, &st->odo, &err, &grow)) {
+        return;
+    }
+    since = (st->odo.heading_rad - r->best_heading_rad) / st->odo.turn_scale;
+    st->odo.heading_rad -= err;
+    r->best_heading_rad -= err - grow * since;
+    st->odo.rot_raw_rad = 0.0f;
+}
+
 /* the scan has found the flame: face it */
 static uint8_t flame_found(ffr_state_t *st)
 {
+    square_up(st);
     st->room.flame_found = FOUND;
     st->room.lost_since_ms = 0u;
     st->flags |= FFR_FLAG_FLAME_SEEN;
@@ -210,6 +229,7 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
     float sig = t->sig;
     float turned = ffr_absf(st->odo.heading_rad - r->start_heading_rad);
     float dir = cfg->scan_dir ? -1.0f : 1.0f;
+    ffr_scan_sq_record(&r->square, cfg, &st->odo, &st->ir_geom, st->ir_mm);
     if (ffr_through_door(st, st->odo.heading_rad)) {
         sig = 0.0f; /* a flame out there is not this room's */
     }
@@ -233,6 +253,7 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
         }
         if (r->lost_since_ms == 0u) {
             ffr_stop(st);
+            square_up(st);
             return RP_LEAVE_TURN; /* no flame in this room */
         }
         if (st->t_ms - r->lost_since_ms >= FFR_FLAME_LOST_MS) {
