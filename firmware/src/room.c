@@ -194,21 +194,23 @@ static uint8_t on_enter_in(ffr_state_t *st, room_tick_t *t)
     return RP_STAY;
 }
 
-/* The scan ends: odometry's heading squared to the room's walls seen in it
- * (turn_calibration.c), and the heading of the best flame signal with it
- * (its error was less by what grew since). The rotation counted toward the
- * next wall fix starts again: the heading is square now. */
+/* The scan ends: what its turn added to odometry's heading error, told by
+ * the room's walls seen in it (turn_calibration.c), comes off the heading,
+ * and off the heading of the best flame signal (less by what grew since).
+ * The scan's rotation no longer counts toward the next wall fix: its share
+ * of the error is gone. */
 static void square_up(ffr_state_t *st)
 {
     ffr_room_state_t *r = &st->room;
-    float err, grow, since;
-    if (!ffr_scan_sq_fix(&r->square, &st->odo, &err, &grow)) {
+    float grow, raw_best;
+    float scale = st->odo.turn_scale; /* before the fix teaches it */
+    if (!ffr_scan_sq_fix(&r->square, &st->odo, &grow)) {
         return;
     }
-    since = (st->odo.heading_rad - r->best_heading_rad) / st->odo.turn_scale;
-    st->odo.heading_rad -= err;
-    r->best_heading_rad -= err - grow * since;
-    st->odo.rot_raw_rad = 0.0f;
+    raw_best = r->square.raw_rad - (st->odo.heading_rad - r->best_heading_rad) / scale;
+    st->odo.heading_rad -= grow * r->square.raw_rad;
+    r->best_heading_rad -= grow * raw_best;
+    st->odo.rot_raw_rad -= r->square.raw_rad;
 }
 
 /* the scan has found the flame: face it */

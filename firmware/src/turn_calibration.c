@@ -48,18 +48,20 @@ void ffr_turn_cal_learn(ffr_odometry_t *o, float err)
 }
 
 /*
- * The turn scale and the heading from a room's scan (a turn in place).
- * Contest walls meet at right angles, square to odometry's frame; every
- * ranger's successive hits, placed in odometry's frame, run along the walls
- * it sweeps, so their stretches' direction modulo 90 degrees is odometry's
- * heading error at that moment. Over the turn that error grows by (scale -
- * true scale) per raw radian: its mean in each third of the turn (by raw
- * rotation), fitted by a line over the raw rotation, gives the true scale
- * (slope) and the heading error at the turn's end (the line there). A hit is
- * placed with the heading its reading was measured at: a GP2D12 reading is
- * about a period old (FFR_IR_AGE_MS), 6 degrees of a 150 deg/s scan; and
- * only a new reading is a new hit (the part measures every ~38 ms, the
- * firmware reads it every tick).
+ * The turn scale from a room's scan (a turn in place), and the heading error
+ * the scan itself added. Contest walls meet at right angles, square to
+ * odometry's frame; every ranger's successive hits, placed in odometry's
+ * frame, run along the walls it sweeps, so their stretches' direction modulo
+ * 90 degrees is odometry's heading error at that moment (plus what the
+ * rangers' timing adds: a GP2D12 reading is up to a period or two old, a few
+ * degrees of a 150 deg/s scan, the same all the turn). Over the turn that
+ * error grows by (scale - true scale) per raw radian: its mean in each third
+ * of the turn (by raw rotation), fitted by a line over the raw rotation,
+ * gives the growth (the slope), whatever the timing's constant share. The
+ * growth times the scan's raw rotation is what the scan added to the heading
+ * error; the error it came in with (the entry's) stays, for the walls to
+ * take off later. Only a new reading is a new hit (the part measures every
+ * ~38 ms, the firmware reads it every tick).
  */
 #define SQ_RANGE_MM 600.0f    /* chosen: farther hits are too noisy for a direction    */
 #define SQ_SEG_MIN_MM 40.0f   /* a stretch of one ranger's hits: at least this (noise)   */
@@ -86,9 +88,7 @@ void ffr_scan_sq_reset(ffr_scan_square_t *q)
 void ffr_scan_sq_record(ffr_scan_square_t *q, const ffr_config_t *cfg, const ffr_odometry_t *o,
                         const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT])
 {
-    float w_rad_s = o->turn_scale * (o->v_mm_s[1] - o->v_mm_s[0]) / cfg->track_width_mm;
-    float h = o->heading_rad - w_rad_s * (0.001f * FFR_IR_AGE_MS);
-    float c = ffr_cosf(h), s = ffr_sinf(h);
+    float c = ffr_cosf(o->heading_rad), s = ffr_sinf(o->heading_rad);
     int i, part;
     q->raw_rad += (o->dpos_mm[1] - o->dpos_mm[0]) / cfg->track_width_mm;
     part = (int)(ffr_absf(q->raw_rad) / (SQ_PART_DEG * FFR_DEG));
@@ -134,11 +134,11 @@ void ffr_scan_sq_record(ffr_scan_square_t *q, const ffr_config_t *cfg, const ffr
     }
 }
 
-int ffr_scan_sq_fix(const ffr_scan_square_t *q, ffr_odometry_t *o, float *err, float *grow)
+int ffr_scan_sq_fix(const ffr_scan_square_t *q, ffr_odometry_t *o, float *grow)
 {
     float e[FFR_SQ_PARTS], t[FFR_SQ_PARTS], wp[FFR_SQ_PARTS];
     float sw = 0.0f, st = 0.0f, se = 0.0f, stt = 0.0f, ste = 0.0f, prev = 0.0f;
-    float k = 0.0f, e0, tmin = 0.0f, tmax = 0.0f;
+    float k, tmin = 0.0f, tmax = 0.0f;
     int i, n = 0;
     for (i = 0; i < FFR_SQ_PARTS; ++i) {
         if (q->w[i] < SQ_PART_MIN_MM) {
@@ -164,22 +164,18 @@ int ffr_scan_sq_fix(const ffr_scan_square_t *q, ffr_odometry_t *o, float *err, f
         se += wp[n] * e[n];
         ++n;
     }
-    if (n == 0) {
-        return 0;
+    if (n < 2 || tmax - tmin < SQ_SPAN_MIN_DEG * FFR_DEG) {
+        return 0; /* too short a turn, or too little wall, to tell */
     }
     st /= sw;
     se /= sw;
-    if (tmax - tmin >= SQ_SPAN_MIN_DEG * FFR_DEG) {
-        for (i = 0; i < n; ++i) {
-            stt += wp[i] * (t[i] - st) * (t[i] - st);
-            ste += wp[i] * (t[i] - st) * (e[i] - se);
-        }
-        k = ste / stt;
+    for (i = 0; i < n; ++i) {
+        stt += wp[i] * (t[i] - st) * (t[i] - st);
+        ste += wp[i] * (t[i] - st) * (e[i] - se);
     }
-    e0 = se + k * (q->raw_rad - st);
-    *err = ffr_wrap_pi(e0);
+    k = ste / stt;
     *grow = k;
-    if (k != 0.0f) {
+    {
         /* the true scale is the one that would not have grown the error */
         float span = tmax - tmin, w = span * span, prior = TURN_CAL_PRIOR_DEG * FFR_DEG;
         o->turn_w += w;
