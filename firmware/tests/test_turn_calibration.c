@@ -188,9 +188,98 @@ TEST(no_wall_in_reach_tells_nothing)
     CHECK_NEAR(o.turn_scale, 1.0f, 0.0f);
 }
 
+/* a turn in place of `turn` radians (true) at `rate_deg_s` from true heading
+ * *th, recorded by q; readings as scan()'s, `age` ticks old */
+static void spin(ffr_odometry_t *o, ffr_scan_square_t *q, const ffr_config_t *cfg, const rig_walls_t *w, float *th,
+                 float turn, float rate_deg_s, float c, int age)
+{
+    const float dt = 0.02f;
+    float rate = rate_deg_s * FFR_DEG * (turn < 0.0f ? -1.0f : 1.0f);
+    int n = (int)(ffr_absf(turn) / (rate_deg_s * FFR_DEG * dt));
+    float ir[FFR_IR_COUNT];
+    ffr_ir_geom_t g;
+    int k, i;
+    for (k = 0; k < n; ++k) {
+        float raw = rate * dt / c;
+        *th += rate * dt;
+        if (k % 2 == 0) {
+            for (i = 0; i < FFR_IR_COUNT; ++i) {
+                ir[i] = rig_beam_mm(cfg, w, i, 0.0f, 0.0f, *th - (float)age * rate * dt);
+            }
+        }
+        o->dpos_mm[1] = 0.5f * raw * cfg->track_width_mm;
+        o->dpos_mm[0] = -o->dpos_mm[1];
+        o->v_mm_s[1] = o->dpos_mm[1] / dt;
+        o->v_mm_s[0] = o->dpos_mm[0] / dt;
+        o->heading_rad += o->turn_scale * raw;
+        ffr_scan_sq_record(q, cfg, o, rig_geom(&g, cfg, ir), ir);
+    }
+    o->v_mm_s[0] = o->v_mm_s[1] = 0.0f;
+}
+
+TEST(the_leave_turn_the_other_way_squares_the_heading_whatever_the_rangers_timing)
+{
+    /* the scan (380 degrees at scan_rate_deg_s), its growth off, then the
+     * leave turn the other way round (180 at turn_rate_deg_s): the two tell
+     * the entry's heading error apart from the readings' age (0-3 ticks,
+     * 0-60 ms); scales 0.9-1.1, entry errors +-12 degrees */
+    rig_walls_t w = {300.0f, -300.0f, 250.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    ffr_config_t cfg;
+    ffr_odometry_t o;
+    ffr_scan_square_t q;
+    float worst = 0.0f;
+    int i, j, age;
+    ffr_config_default(&cfg);
+    for (i = 0; i <= 8; ++i) {
+        float c = 0.9f + 0.025f * (float)i;
+        for (j = 0; j < 5; ++j) {
+            for (age = 0; age <= 3; ++age) {
+                float e0 = (-12.0f + 6.0f * (float)j) * FFR_DEG;
+                float th = (float)(i * 5 + j + age) * 13.0f * FFR_DEG;
+                float grow = 0.0f, err = 0.0f, left;
+                ffr_odometry_reset(&o);
+                o.heading_rad = th + e0;
+                ffr_scan_sq_reset(&q);
+                spin(&o, &q, &cfg, &w, &th, 380.0f * FFR_DEG, cfg.scan_rate_deg_s, c, age);
+                CHECK(ffr_scan_sq_fix(&q, &o, &grow));
+                o.heading_rad -= grow * q.raw_rad;
+                ffr_scan_sq_restart(&q);
+                spin(&o, &q, &cfg, &w, &th, -180.0f * FFR_DEG, cfg.turn_rate_deg_s, c, age);
+                CHECK(ffr_scan_sq_resquare(&q, &err));
+                /* once only */
+                CHECK(!ffr_scan_sq_resquare(&q, &err));
+                left = ffr_absf(o.heading_rad - err - th);
+                worst = left > worst ? left : worst;
+            }
+        }
+    }
+    CHECK_NEAR(worst, 0.0f, 2.0f * FFR_DEG);
+}
+
+TEST(a_leave_turn_the_same_way_tells_nothing)
+{
+    /* the same way round at the same rate: timing and heading error look alike */
+    rig_walls_t w = {300.0f, -300.0f, 250.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    ffr_config_t cfg;
+    ffr_odometry_t o;
+    ffr_scan_square_t q;
+    float grow = 0.0f, err = 0.0f, th = 0.2f;
+    ffr_config_default(&cfg);
+    ffr_odometry_reset(&o);
+    o.heading_rad = th + 0.1f;
+    ffr_scan_sq_reset(&q);
+    spin(&o, &q, &cfg, &w, &th, 380.0f * FFR_DEG, cfg.scan_rate_deg_s, 1.0f, 2);
+    CHECK(ffr_scan_sq_fix(&q, &o, &grow));
+    ffr_scan_sq_restart(&q);
+    spin(&o, &q, &cfg, &w, &th, 180.0f * FFR_DEG, cfg.scan_rate_deg_s, 1.0f, 2);
+    CHECK(!ffr_scan_sq_resquare(&q, &err));
+}
+
 SUITE(turn_calibration,
       TEST_REF(the_scale_converges_over_the_whole_range),
       TEST_REF(small_turns_and_large_errors_teach_nothing),
       TEST_REF(a_rooms_scan_tells_what_it_added_to_the_heading_error_and_the_turn_scale),
       TEST_REF(a_short_scan_tells_nothing),
-      TEST_REF(no_wall_in_reach_tells_nothing));
+      TEST_REF(no_wall_in_reach_tells_nothing),
+      TEST_REF(the_leave_turn_the_other_way_squares_the_heading_whatever_the_rangers_timing),
+      TEST_REF(a_leave_turn_the_same_way_tells_nothing));
