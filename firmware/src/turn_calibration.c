@@ -207,13 +207,13 @@ int ffr_scan_sq_fix(ffr_scan_square_t *q, ffr_odometry_t *o, float *grow)
  * the wall turned by w1 x a). The leave turn, made the other way at w2,
  * shows e + w2 x a: the two tell e and a apart, whatever the parts' timing
  * (the datasheet profile has none, realistic about a period). The heading
- * then comes square: e comes off. A time outside -SQ_AGE_SLACK_S to
- * SQ_AGE_MAX_S, or too
+ * then comes square: e comes off. A time outside 0..SQ_AGE_MAX_S (fresh
+ * readings, age near 0, measure either side of it: then nothing, tried: a
+ * tick's slack below 0 set one datasheet mission of 2,000 wrong), or too
  * little wall seen in the leave turn, is no measurement: nothing changes.
  */
 #define SQ_LEAVE_MIN_MM 200.0f /* chosen: wall seen in the leave turn, at least          */
 #define SQ_AGE_MAX_S 0.1f      /* a reading older than this is no GP2D12's (38 ms cycle) */
-#define SQ_AGE_SLACK_S 0.02f   /* chosen, a tick: fresh readings measure a little below 0 */
 #define SQ_RATE_APART 1.0f     /* rad/s: the two turns' rates at least this far apart    */
 
 int ffr_scan_sq_resquare(ffr_scan_square_t *q, float *err)
@@ -245,7 +245,7 @@ int ffr_scan_sq_resquare(ffr_scan_square_t *q, float *err)
         l2 += 0.5f * FFR_PI;
     }
     a = (q->level_rad - l2) / (q->rate_rad_s - w2);
-    if (a < -SQ_AGE_SLACK_S || a > SQ_AGE_MAX_S) {
+    if (a < 0.0f || a > SQ_AGE_MAX_S) {
         return 0;
     }
     e = q->level_rad - q->rate_rad_s * a;
