@@ -276,12 +276,9 @@ typedef struct {
     float ay_mm[FFR_IR_COUNT];
     float c4[FFR_SQ_PARTS], s4[FFR_SQ_PARTS]; /* sum of len x (cos, sin)(4 x stretch direction) */
     float w[FFR_SQ_PARTS], wt[FFR_SQ_PARTS];  /* sum of len, of len x raw rotation */
-    float ww[FFR_SQ_PARTS];        /* sum of len x rotation rate (rad/s)      */
     float last_mm[FFR_IR_COUNT];   /* each ranger's last reading: a new one is a new measurement */
-    float level_rad, rate_rad_s;   /* the scan's error level and its rate (the leave turn's re-square) */
     uint8_t anchor_ok[FFR_IR_COUNT];
-    uint8_t stage;                 /* 0: nothing known, 1: the scan's level known, 2: re-squared */
-    uint8_t reserved[2];
+    uint8_t reserved[3];
 } ffr_scan_square_t;
 
 typedef struct {

@@ -147,14 +147,7 @@ void ffr_turn_cal_learn(ffr_odometry_t *o, float err);
 void ffr_scan_sq_reset(ffr_scan_square_t *q);
 void ffr_scan_sq_record(ffr_scan_square_t *q, const ffr_config_t *cfg, const ffr_odometry_t *o,
                         const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT]);
-int ffr_scan_sq_fix(ffr_scan_square_t *q, ffr_odometry_t *o, float *grow);
-/* The leave turn (the other way round) after a scan that fix told: restart
- * the record keeping what the scan told, record its ticks, then resquare: 1
- * if the scan and the leave turn together told odometry's heading error now
- * (*err, rad, + = too far counter-clockwise; the rangers' timing taken out),
- * 0 if not (once only: later calls say 0). */
-void ffr_scan_sq_restart(ffr_scan_square_t *q);
-int ffr_scan_sq_resquare(ffr_scan_square_t *q, float *err);
+int ffr_scan_sq_fix(const ffr_scan_square_t *q, ffr_odometry_t *o, float *grow);
 
 /* turn.c: turning in place by odometry. */
 float ffr_turn_yaw(const ffr_config_t *cfg, float heading, float target);

@@ -78,8 +78,6 @@ enum {
 /* counts: the flame's balance is taken over at least this sum (no division
  * by a sum near zero) */
 #define BAL_MIN_SUM 1.0f
-/* a leave turn this near a half turn may go either way round (degrees) */
-#define LEAVE_EITHER_DEG 150.0f
 /* backing out, the scan point reached within this (mm) */
 #define BACK_AT_SCAN_MM 15.0f
 /* room_state_t.flame_found: none, found, and found with the approach stopped
@@ -123,18 +121,6 @@ static void enter(ffr_state_t *st, uint8_t p)
         r->best_heading_rad = st->odo.heading_rad;
         r->best_front_mm = 0.0f;
         ffr_scan_sq_reset(&r->square);
-    }
-    if (p == RP_LEAVE_TURN && r->square.stage == 1u) {
-        /* the scan told its walls' error: the leave turn goes the other way
-         * round (if it is a half turn either way) and tells the rangers'
-         * timing apart from the heading error (turn_calibration.c) */
-        float d = ffr_wrap_pi(r->entry_heading_rad + FFR_PI - st->odo.heading_rad);
-        float scan = st->cfg.scan_dir ? -1.0f : 1.0f;
-        if (ffr_absf(d) > LEAVE_EITHER_DEG * FFR_DEG && d * scan > 0.0f) {
-            d -= scan * 2.0f * FFR_PI;
-        }
-        r->exit_heading_rad = st->odo.heading_rad + d;
-        ffr_scan_sq_restart(&r->square);
     }
     r->phase = p;
     r->phase_start_mm = st->odo.dist_mm;
@@ -433,20 +419,6 @@ static uint8_t on_leave_turn(ffr_state_t *st, room_tick_t *t)
 {
     ffr_room_state_t *r = &st->room;
     float target = closest(st->odo.heading_rad, r->entry_heading_rad + FFR_PI);
-    if (r->square.stage == 1u) {
-        float err;
-        target = r->exit_heading_rad; /* the way round chosen on entry */
-        ffr_scan_sq_record(&r->square, &st->cfg, &st->odo, &st->ir_geom, st->ir_mm);
-        if (turn_to(st, target)) {
-            if (ffr_scan_sq_resquare(&r->square, &err)) {
-                /* square to the room's walls: the rest of the turn next tick */
-                st->odo.heading_rad -= err;
-                st->odo.rot_raw_rad = 0.0f;
-            }
-            return RP_STAY;
-        }
-        return RP_STAY;
-    }
     if (turn_to(st, target)) {
         /* the corridor heading reversed: route.c takes it as its reference,
          * so later turns stay square to the walls */

@@ -80,18 +80,15 @@ void ffr_scan_sq_reset(ffr_scan_square_t *q)
         q->anchor_ok[i] = 0u;
     }
     for (i = 0; i < FFR_SQ_PARTS; ++i) {
-        q->c4[i] = q->s4[i] = q->w[i] = q->wt[i] = q->ww[i] = 0.0f;
+        q->c4[i] = q->s4[i] = q->w[i] = q->wt[i] = 0.0f;
     }
-    q->level_rad = q->rate_rad_s = 0.0f;
-    q->stage = 0u;
-    q->reserved[0] = q->reserved[1] = 0u;
+    q->reserved[0] = q->reserved[1] = q->reserved[2] = 0u;
 }
 
 void ffr_scan_sq_record(ffr_scan_square_t *q, const ffr_config_t *cfg, const ffr_odometry_t *o,
                         const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT])
 {
     float c = ffr_cosf(o->heading_rad), s = ffr_sinf(o->heading_rad);
-    float rate = o->turn_scale * (o->v_mm_s[1] - o->v_mm_s[0]) / cfg->track_width_mm;
     int i, part;
     q->raw_rad += (o->dpos_mm[1] - o->dpos_mm[0]) / cfg->track_width_mm;
     part = (int)(ffr_absf(q->raw_rad) / (SQ_PART_DEG * FFR_DEG));
@@ -131,14 +128,13 @@ void ffr_scan_sq_record(ffr_scan_square_t *q, const ffr_config_t *cfg, const ffr
             q->s4[part] += len * (2.0f * c2 * s2);
             q->w[part] += len;
             q->wt[part] += len * q->raw_rad;
-            q->ww[part] += len * rate;
         }
         q->ax_mm[i] = px;
         q->ay_mm[i] = py;
     }
 }
 
-int ffr_scan_sq_fix(ffr_scan_square_t *q, ffr_odometry_t *o, float *grow)
+int ffr_scan_sq_fix(const ffr_scan_square_t *q, ffr_odometry_t *o, float *grow)
 {
     float e[FFR_SQ_PARTS], t[FFR_SQ_PARTS], wp[FFR_SQ_PARTS];
     float sw = 0.0f, st = 0.0f, se = 0.0f, stt = 0.0f, ste = 0.0f, prev = 0.0f;
@@ -179,17 +175,6 @@ int ffr_scan_sq_fix(ffr_scan_square_t *q, ffr_odometry_t *o, float *grow)
     }
     k = ste / stt;
     *grow = k;
-    /* the error's level where the turn began (the entry's error plus the
-     * rangers' timing at this rate), for the leave turn's re-square */
-    {
-        float wr = 0.0f;
-        for (i = 0; i < FFR_SQ_PARTS; ++i) {
-            wr += q->w[i] >= SQ_PART_MIN_MM ? q->ww[i] : 0.0f;
-        }
-        q->level_rad = se - k * st;
-        q->rate_rad_s = wr / sw;
-        q->stage = 1u;
-    }
     {
         /* the true scale is the one that would not have grown the error */
         float span = tmax - tmin, w = span * span, prior = TURN_CAL_PRIOR_DEG * FFR_DEG;
@@ -198,68 +183,4 @@ int ffr_scan_sq_fix(ffr_scan_square_t *q, ffr_odometry_t *o, float *grow)
                                    TURN_CAL_MIN, TURN_CAL_MAX);
     }
     return 1;
-}
-
-/*
- * Re-square before leaving the room. The scan told the error's level where
- * it began: the heading error the robot came in with (e) plus what the
- * rangers' timing adds at the scan's rate w1 (a reading a seconds old shows
- * the wall turned by w1 x a). The leave turn, made the other way at w2,
- * shows e + w2 x a: the two tell e and a apart, whatever the parts' timing
- * (the datasheet profile has none, realistic about a period). The heading
- * then comes square: e comes off. A time outside 0..SQ_AGE_MAX_S (fresh
- * readings, age near 0, measure either side of it: then nothing, tried: a
- * tick's slack below 0 set one datasheet mission of 2,000 wrong), or too
- * little wall seen in the leave turn, is no measurement: nothing changes.
- */
-#define SQ_LEAVE_MIN_MM 200.0f /* chosen: wall seen in the leave turn, at least          */
-#define SQ_AGE_MAX_S 0.1f      /* a reading older than this is no GP2D12's (38 ms cycle) */
-#define SQ_RATE_APART 1.0f     /* rad/s: the two turns' rates at least this far apart    */
-
-int ffr_scan_sq_resquare(ffr_scan_square_t *q, float *err)
-{
-    float c4 = 0.0f, s4 = 0.0f, w = 0.0f, wr = 0.0f, l2, w2, a, e;
-    int i;
-    if (q->stage != 1u) {
-        return 0;
-    }
-    q->stage = 2u;
-    for (i = 0; i < FFR_SQ_PARTS; ++i) {
-        c4 += q->c4[i];
-        s4 += q->s4[i];
-        w += q->w[i];
-        wr += q->ww[i];
-    }
-    if (w < SQ_LEAVE_MIN_MM) {
-        return 0;
-    }
-    w2 = wr / w;
-    if (ffr_absf(q->rate_rad_s - w2) < SQ_RATE_APART) {
-        return 0;
-    }
-    l2 = 0.25f * ffr_atan2f(s4, c4);
-    while (l2 - q->level_rad > 0.25f * FFR_PI) {
-        l2 -= 0.5f * FFR_PI;
-    }
-    while (l2 - q->level_rad < -0.25f * FFR_PI) {
-        l2 += 0.5f * FFR_PI;
-    }
-    a = (q->level_rad - l2) / (q->rate_rad_s - w2);
-    if (a < 0.0f || a > SQ_AGE_MAX_S) {
-        return 0;
-    }
-    e = q->level_rad - q->rate_rad_s * a;
-    *err = e;
-    return 1;
-}
-
-/* the leave turn records anew, keeping what the scan told */
-void ffr_scan_sq_restart(ffr_scan_square_t *q)
-{
-    float level = q->level_rad, rate = q->rate_rad_s;
-    uint8_t stage = q->stage;
-    ffr_scan_sq_reset(q);
-    q->level_rad = level;
-    q->rate_rad_s = rate;
-    q->stage = stage;
 }
