@@ -264,6 +264,23 @@ typedef struct {
     uint8_t reserved2[2];
 } ffr_wall_cal_t;
 
+/* A scan's walls (turn_calibration.c): each ranger's successive hits in
+ * odometry's frame, their stretches' direction modulo 90 degrees summed in
+ * FFR_SQ_PARTS parts of the turn (by raw rotation): how odometry's heading
+ * error grows over the turn is the turn scale's error, and where it has got
+ * to is the heading error now. */
+#define FFR_SQ_PARTS 3
+typedef struct {
+    float raw_rad;                 /* raw rotation since the scan began       */
+    float ax_mm[FFR_IR_COUNT];     /* each ranger's last hit (odometry frame) */
+    float ay_mm[FFR_IR_COUNT];
+    float c4[FFR_SQ_PARTS], s4[FFR_SQ_PARTS]; /* sum of len x (cos, sin)(4 x stretch direction) */
+    float w[FFR_SQ_PARTS], wt[FFR_SQ_PARTS];  /* sum of len, of len x raw rotation */
+    float last_mm[FFR_IR_COUNT];   /* each ranger's last reading: a new one is a new measurement */
+    uint8_t anchor_ok[FFR_IR_COUNT];
+    uint8_t reserved[3];
+} ffr_scan_square_t;
+
 typedef struct {
     uint8_t phase;
     uint8_t room;
@@ -284,6 +301,7 @@ typedef struct {
     uint32_t lost_since_ms;        /* the approached flame lost since (0: not lost) */
     uint8_t flame_near;            /* the approach has seen the flame near (room.c FLAME_NEAR) */
     uint8_t reserved[3];
+    ffr_scan_square_t square;      /* the walls seen in the scan (turn_calibration.c) */
 } ffr_room_state_t;
 
 /* The rangers' geometry in the body frame (x ahead, y left; ir_calibration.c):

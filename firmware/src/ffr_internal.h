@@ -138,6 +138,16 @@ int16_t ffr_wall_case_turn(ffr_wall_case_t c, uint8_t prefer);
  * counter-clockwise); with enough rotation since the last such fix, the
  * scale moves toward the one that explains it. Resets the rotation count. */
 void ffr_turn_cal_learn(ffr_odometry_t *o, float err);
+/* A scan in place measured against the room's walls (turn_calibration.c):
+ * reset when it begins, record every tick of it (after odometry's update),
+ * and at its end fix: 1 if the walls told how odometry's heading error grew
+ * per raw radian of the turn (*grow; the scan added grow x q->raw_rad), which
+ * also teaches odometry's turn scale; 0: too short a turn or too little wall
+ * seen to tell, nothing changed. */
+void ffr_scan_sq_reset(ffr_scan_square_t *q);
+void ffr_scan_sq_record(ffr_scan_square_t *q, const ffr_config_t *cfg, const ffr_odometry_t *o,
+                        const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT]);
+int ffr_scan_sq_fix(const ffr_scan_square_t *q, ffr_odometry_t *o, float *grow);
 
 /* turn.c: turning in place by odometry. */
 float ffr_turn_yaw(const ffr_config_t *cfg, float heading, float target);

@@ -120,6 +120,7 @@ static void enter(ffr_state_t *st, uint8_t p)
         r->best_signal = 0.0f;
         r->best_heading_rad = st->odo.heading_rad;
         r->best_front_mm = 0.0f;
+        ffr_scan_sq_reset(&r->square);
     }
     r->phase = p;
     r->phase_start_mm = st->odo.dist_mm;
@@ -193,9 +194,29 @@ static uint8_t on_enter_in(ffr_state_t *st, room_tick_t *t)
     return RP_STAY;
 }
 
+/* The scan ends: what its turn added to odometry's heading error, told by
+ * the room's walls seen in it (turn_calibration.c), comes off the heading,
+ * and off the heading of the best flame signal (less by what grew since).
+ * The scan's rotation no longer counts toward the next wall fix: its share
+ * of the error is gone. */
+static void square_up(ffr_state_t *st)
+{
+    ffr_room_state_t *r = &st->room;
+    float grow, raw_best;
+    float scale = st->odo.turn_scale; /* before the fix teaches it */
+    if (!ffr_scan_sq_fix(&r->square, &st->odo, &grow)) {
+        return;
+    }
+    raw_best = r->square.raw_rad - (st->odo.heading_rad - r->best_heading_rad) / scale;
+    st->odo.heading_rad -= grow * r->square.raw_rad;
+    r->best_heading_rad -= grow * raw_best;
+    st->odo.rot_raw_rad -= r->square.raw_rad;
+}
+
 /* the scan has found the flame: face it */
 static uint8_t flame_found(ffr_state_t *st)
 {
+    square_up(st);
     st->room.flame_found = FOUND;
     st->room.lost_since_ms = 0u;
     st->flags |= FFR_FLAG_FLAME_SEEN;
@@ -210,6 +231,7 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
     float sig = t->sig;
     float turned = ffr_absf(st->odo.heading_rad - r->start_heading_rad);
     float dir = cfg->scan_dir ? -1.0f : 1.0f;
+    ffr_scan_sq_record(&r->square, cfg, &st->odo, &st->ir_geom, st->ir_mm);
     if (ffr_through_door(st, st->odo.heading_rad)) {
         sig = 0.0f; /* a flame out there is not this room's */
     }
@@ -233,6 +255,7 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
         }
         if (r->lost_since_ms == 0u) {
             ffr_stop(st);
+            square_up(st);
             return RP_LEAVE_TURN; /* no flame in this room */
         }
         if (st->t_ms - r->lost_since_ms >= FFR_FLAME_LOST_MS) {
