@@ -25,6 +25,8 @@ static void step(ffr_config_t *c, uint8_t op, uint8_t side, uint8_t event, uint8
 #define FOLLOW(side, ev) step(c, FFR_OP_FOLLOW, FFR_SIDE_##side, FFR_EV_##ev, 0, 0)
 #define TURN(deg) step(c, FFR_OP_TURN, FFR_SIDE_NONE, 0, 0, (int16_t)(deg))
 #define TURN_CASE(prefer) step(c, FFR_OP_TURN, FFR_SIDE_##prefer, 0, 0, 0)
+/* follow `side` until the n-th whole opening on `at` (GAP_L/GAP_R), stop in its middle */
+#define FOLLOW_GAP(side, at, n) step(c, FFR_OP_FOLLOW, FFR_SIDE_##side, FFR_EV_GAP_##at, (uint8_t)(n), 0)
 #define FORWARD(side, mm) step(c, FFR_OP_FORWARD, FFR_SIDE_##side, 0, 0, (int16_t)(mm))
 #define ROOM(n) step(c, FFR_OP_ROOM, FFR_SIDE_NONE, 0, (uint8_t)(n), 0)
 #define HOME(side) step(c, FFR_OP_HOME, FFR_SIDE_##side, 0, 0, 0)
@@ -34,7 +36,9 @@ static void step(ffr_config_t *c, uint8_t op, uint8_t side, uint8_t event, uint8
  * The default route, from the home circle facing up the east hallway.
  * Rooms are visited 1 (MID), 2 (TL), 3 (BL), 4 (BR). Doors are found by
  * their wall ending ("FOLLOW ... OPEN"), so a door moved along its wall is
- * still found; the two FORWARD legs cross junctions with no wall to sense.
+ * still found. Where a leg crosses a junction or stops at a door across it
+ * ("FOLLOW_GAP"), it counts the openings on that side and stops in the middle
+ * of the n-th, measured by its two edges: no distance of the map.
  */
 static void default_route(ffr_config_t *c)
 {
@@ -59,7 +63,7 @@ static void default_route(ffr_config_t *c)
     TURN(-90);              /* 17                                              */
     ROOM(3);                /* 18                                              */
     TURN(90);               /* 19 out of room 3 facing east: north             */
-    FORWARD(LEFT, 440);     /* 20 across the corridor to room 4's door         */
+    FOLLOW_GAP(LEFT, R, 1); /* 20 up the corridor to room 4's door, 1st opening right */
     TURN(-90);              /* 21                                              */
     ROOM(4);                /* 22                                              */
     END();                  /* 23 no flame anywhere                            */
@@ -74,19 +78,20 @@ static void default_route(ffr_config_t *c)
     TURN(90);               /* 28 east                                         */
     FOLLOW(RIGHT, OPEN_R);  /* 29 until the corridor opens on the right        */
     TURN(-90);              /* 30 south                                        */
-    FORWARD(RIGHT, 460);    /* 31 to the middle hallway                        */
+    FOLLOW_GAP(RIGHT, L, 1); /* 31 to the middle hallway, 1st opening left     */
     TURN(90);               /* 32 east                                         */
     HOME(RIGHT);            /* 33                                              */
     /* home from room 3 (leaving it eastward) */
     c->return_start[2] = c->route_len;
     TURN(90);               /* 34 north                                        */
-    FORWARD(LEFT, 920);     /* 35 up the corridor to the middle hallway        */
+    FOLLOW_GAP(LEFT, R, 2); /* 35 up the corridor past room 4's door to the
+                             *    middle hallway: 2nd opening right           */
     TURN(-90);              /* 36 east                                         */
     HOME(RIGHT);            /* 37                                              */
     /* home from room 4 (leaving it westward) */
     c->return_start[3] = c->route_len;
     TURN(-90);              /* 38 north                                        */
-    FORWARD(LEFT, 480);     /* 39                                              */
+    FOLLOW_GAP(LEFT, R, 1); /* 39 to the middle hallway, 1st opening right     */
     TURN(-90);              /* 40 east                                         */
     HOME(RIGHT);            /* 41                                              */
 }
