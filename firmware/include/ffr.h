@@ -57,7 +57,7 @@ typedef enum {
     FFR_EV_LINE = 3,   /* a white line under the line sensor                    */
     FFR_EV_GAP_L = 4,  /* the arg-th opening on the left (0 = the first), seen
                         * whole: open, then a wall again; the robot goes on to
-                        * the opening's middle (openings.c)                    */
+                        * half a hallway before its far edge (openings.c)      */
     FFR_EV_GAP_R = 5   /* the same on the right                                 */
 } ffr_event_t;
 
@@ -225,14 +225,11 @@ typedef struct {
     /* whole openings (GAP events): the front ranger alone, from the step's start */
     uint8_t gap_open[2];           /* the side reads open now (confirmed)     */
     uint8_t gaps[2];               /* openings seen whole (open, then a wall) */
-    uint8_t gap_wall[2];           /* a wall was seen this step before the opening */
-    uint8_t reserved_gap[2];
+    uint8_t gap_track[2];          /* the far edge of the last one still seen: refined */
     float gap_run_mm[2];           /* travel of the current run (wall or open) */
     float gap_first_mm[2];         /* where the current run of wall hits began */
-    float gap_last_mm[2];          /* the last wall hit: where a wall ended   */
-    float gap_pend_mm[2];          /* the open run's start (where the wall ended), -1 unknown */
-    float gap_start_mm[2];         /* the last whole opening: its start, -1 unknown */
-    float gap_end_mm[2];           /* and its end (the wall after it)         */
+    float gap_end_mm[2];           /* the last whole opening's far edge (the wall after it) */
+    float gap_since_mm[2];         /* travel since the far edge was last refined */
 } ffr_openings_t;
 
 typedef struct {

@@ -25,7 +25,8 @@ static void step(ffr_config_t *c, uint8_t op, uint8_t side, uint8_t event, uint8
 #define FOLLOW(side, ev) step(c, FFR_OP_FOLLOW, FFR_SIDE_##side, FFR_EV_##ev, 0, 0)
 #define TURN(deg) step(c, FFR_OP_TURN, FFR_SIDE_NONE, 0, 0, (int16_t)(deg))
 #define TURN_CASE(prefer) step(c, FFR_OP_TURN, FFR_SIDE_##prefer, 0, 0, 0)
-/* follow `side` until the n-th whole opening on `at` (GAP_L/GAP_R), stop in its middle */
+/* follow `side` until the n-th whole opening on `at` (GAP_L/GAP_R), stop half a
+ * hallway before its far edge: in its middle */
 #define FOLLOW_GAP(side, at, n) step(c, FFR_OP_FOLLOW, FFR_SIDE_##side, FFR_EV_GAP_##at, (uint8_t)(n), 0)
 #define FORWARD(side, mm) step(c, FFR_OP_FORWARD, FFR_SIDE_##side, 0, 0, (int16_t)(mm))
 #define ROOM(n) step(c, FFR_OP_ROOM, FFR_SIDE_NONE, 0, (uint8_t)(n), 0)
@@ -38,7 +39,8 @@ static void step(ffr_config_t *c, uint8_t op, uint8_t side, uint8_t event, uint8
  * their wall ending ("FOLLOW ... OPEN"), so a door moved along its wall is
  * still found. Where a leg crosses a junction or stops at a door across it
  * ("FOLLOW_GAP"), it counts the openings on that side and stops in the middle
- * of the n-th, measured by its two edges: no distance of the map.
+ * of the n-th, half a hallway before the far edge it sees: no distance of
+ * the map.
  */
 static void default_route(ffr_config_t *c)
 {

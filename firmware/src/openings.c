@@ -40,26 +40,39 @@ void ffr_openings_reset(ffr_openings_t *op)
         op->since_open_mm[i] = 1.0e9f; /* never, in this step */
         op->gap_open[i] = 0;
         op->gaps[i] = 0;
-        op->gap_wall[i] = 0;
-        op->reserved_gap[i] = 0;
+        op->gap_track[i] = 0;
+        op->gap_since_mm[i] = 0.0f;
         op->gap_run_mm[i] = 0.0f;
         op->gap_first_mm[i] = 0.0f;
-        op->gap_last_mm[i] = 0.0f;
-        op->gap_start_mm[i] = -1.0f;
-        op->gap_pend_mm[i] = -1.0f;
         op->gap_end_mm[i] = 0.0f;
     }
 }
 
 /* Whole openings on one side, by the front corner ranger alone: a run of
  * open readings (open_confirm_mm, a missing reading counting half as above)
- * then a run of wall hits beside (wall_seen_mm) is one opening, from where
- * the wall before it ended (its last hit, if this step saw one) to where the
- * wall after it begins (the first hit of the run). The ranger looks ahead at
- * 45 degrees, so the first hit beside after an opening is the far wall's
- * face at the opening's far edge, and its distance ahead puts that edge. A
- * side open from the step's start counts as an opening once a wall follows
- * (its start unknown): a step that begins in a door or a junction counts it. */
+ * then a run of wall hits beside (wall_seen_mm) is one opening, ending where
+ * the wall after it begins (the first hit of the run, then its nearer hits
+ * on the same face: gap_refine). The ranger looks ahead at 45 degrees, so
+ * the first hit beside after an opening is the far wall's face at the
+ * opening's far edge, and its distance ahead puts that edge. A side open
+ * from the step's start counts as an opening once a wall follows: a step
+ * that begins in a door or a junction counts it. */
+/* a later hit on the far wall is taken for its edge when it is within half
+ * the travel since the last one taken of that one: the hits on a wall
+ * across (the edge's face) stay put as the robot comes nearer, each from a
+ * shorter range (a GP2D12 part's error shrinks with the range), while hits
+ * on a wall alongside move on with the robot (by all of the travel) and are
+ * not taken */
+
+static void gap_refine(ffr_openings_t *op, int side, float *edge, float at_mm, float step_mm)
+{
+    op->gap_since_mm[side] += step_mm;
+    if (ffr_absf(at_mm - *edge) <= 0.5f * op->gap_since_mm[side]) {
+        *edge = at_mm;
+        op->gap_since_mm[side] = 0.0f;
+    }
+}
+
 static void gap_update(ffr_openings_t *op, const ffr_config_t *cfg, int side, int wall, int valid, float at_mm,
                        float step_mm)
 {
@@ -67,23 +80,26 @@ static void gap_update(ffr_openings_t *op, const ffr_config_t *cfg, int side, in
         if (op->gap_open[side]) {
             if (op->gap_run_mm[side] <= 0.0f) {
                 op->gap_first_mm[side] = at_mm;
+                op->gap_since_mm[side] = 0.0f;
+            } else {
+                gap_refine(op, side, &op->gap_first_mm[side], at_mm, step_mm);
             }
             op->gap_run_mm[side] += step_mm;
             if (op->gap_run_mm[side] >= cfg->wall_seen_mm) {
-                op->gap_start_mm[side] = op->gap_pend_mm[side];
                 op->gap_end_mm[side] = op->gap_first_mm[side];
                 if (op->gaps[side] < 255u) {
                     op->gaps[side] = (uint8_t)(op->gaps[side] + 1u);
                 }
                 op->gap_open[side] = 0;
                 op->gap_run_mm[side] = 0.0f;
-                op->gap_wall[side] = 1;
-                op->gap_last_mm[side] = at_mm;
+                op->gap_track[side] = 1;
             }
         } else {
+            if (op->gap_track[side]) {
+                /* the last opening's far edge, seen nearer */
+                gap_refine(op, side, &op->gap_end_mm[side], at_mm, step_mm);
+            }
             op->gap_run_mm[side] = 0.0f;
-            op->gap_wall[side] = 1;
-            op->gap_last_mm[side] = at_mm;
         }
     } else if (op->gap_open[side]) {
         op->gap_run_mm[side] = 0.0f; /* the wall's run broke: it was not one yet */
@@ -91,8 +107,8 @@ static void gap_update(ffr_openings_t *op, const ffr_config_t *cfg, int side, in
         op->gap_run_mm[side] += valid ? step_mm : 0.5f * step_mm;
         if (op->gap_run_mm[side] >= cfg->open_confirm_mm) {
             op->gap_open[side] = 1;
+            op->gap_track[side] = 0;
             op->gap_run_mm[side] = 0.0f;
-            op->gap_pend_mm[side] = op->gap_wall[side] ? op->gap_last_mm[side] : -1.0f;
         }
     }
 }
@@ -190,13 +206,8 @@ int ffr_gap(const ffr_openings_t *op, int side, uint8_t n) { return op->gaps[sid
 
 float ffr_gap_middle_mm(const ffr_openings_t *op, const ffr_config_t *cfg, int side)
 {
-    float start = op->gap_start_mm[side];
-    float end = op->gap_end_mm[side];
-    /* both edges seen, and no wider than a hallway or a door can be (chosen:
-     * three half-hallways, 69 cm by default, over the 61 cm of a 56 cm
-     * hallway moved 5 cm): its middle; else half a hallway before its end */
-    if (start >= 0.0f && end > start && end - start <= 3.0f * cfg->hallway_half_mm) {
-        return 0.5f * (start + end);
-    }
-    return end - cfg->hallway_half_mm;
+    /* half a hallway before the far edge (not the middle of the two edges:
+     * the wall before the opening is last hit late, the ranger's beam being
+     * wide, so a middle taken from it fell late; docs/firmware.md) */
+    return op->gap_end_mm[side] - cfg->hallway_half_mm;
 }

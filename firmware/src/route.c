@@ -139,6 +139,11 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
                 return;
             }
         }
+        if (s->event == FFR_EV_GAP_L || s->event == FFR_EV_GAP_R) {
+            /* the far edge is refined as the robot nears it (openings.c) */
+            st->route.goal_mm = ffr_gap_middle_mm(&st->open, cfg, s->event == FFR_EV_GAP_L ? FFR_SIDE_LEFT
+                                                                                            : FFR_SIDE_RIGHT);
+        }
         if (drive_to_goal(st)) {
             next(st);
         }

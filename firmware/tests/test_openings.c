@@ -183,7 +183,7 @@ static void gaps_drive(ffr_openings_t *op, const ffr_config_t *cfg, float x0, fl
     }
 }
 
-TEST(gaps_a_door_then_a_hallway_are_two_openings_each_put_by_its_edges)
+TEST(gaps_a_door_then_a_hallway_are_two_openings_each_put_by_its_far_edge)
 {
     ffr_config_t cfg;
     ffr_openings_t op;
@@ -195,14 +195,12 @@ TEST(gaps_a_door_then_a_hallway_are_two_openings_each_put_by_its_edges)
     gaps_drive(&op, &cfg, 0.0f, 0.0f, 0.0f, 760.0f, 0.0f);
     CHECK(op.gaps[FFR_SIDE_RIGHT] == 1);
     CHECK(ffr_gap(&op, FFR_SIDE_RIGHT, 0) && ffr_gap(&op, FFR_SIDE_RIGHT, 1) && !ffr_gap(&op, FFR_SIDE_RIGHT, 2));
-    /* its edges: where the wall ended (the beam's last hit on it) and the far wall */
-    CHECK_NEAR(op.gap_start_mm[FFR_SIDE_RIGHT], 460.0, 10.0);
+    /* its far edge: the room's wall; the robot goes to half a hallway before it */
     CHECK_NEAR(op.gap_end_mm[FFR_SIDE_RIGHT], 920.0, 3.0);
     CHECK_NEAR(ffr_gap_middle_mm(&op, &cfg, FFR_SIDE_RIGHT), 690.0, 6.0);
     /* on: the room's wall end, then the hallway, then the wall after it: the second */
     gaps_drive(&op, &cfg, 0.0f, 0.0f, 0.0f, 1250.0f, 0.0f);
     CHECK(op.gaps[FFR_SIDE_RIGHT] == 2 && ffr_gap(&op, FFR_SIDE_RIGHT, 2));
-    CHECK_NEAR(op.gap_start_mm[FFR_SIDE_RIGHT], 940.0, 10.0);
     CHECK_NEAR(op.gap_end_mm[FFR_SIDE_RIGHT], 1400.0, 3.0);
     CHECK_NEAR(ffr_gap_middle_mm(&op, &cfg, FFR_SIDE_RIGHT), 1170.0, 6.0);
     /* the left wall never opened */
@@ -214,33 +212,16 @@ TEST(gaps_a_step_that_starts_in_an_opening_counts_it_from_its_far_edge)
     ffr_config_t cfg;
     ffr_openings_t op;
     ffr_config_default(&cfg);
-    /* started in the door: open at once, the wall before it never seen: its
-     * middle is half a hallway before the far edge */
+    /* started in the door: open at once, the wall before it never seen: the
+     * door still counts, its far edge where it is */
     gaps_drive(&op, &cfg, 300.0f, 0.0f, 0.0f, 600.0f, 0.0f);
     CHECK(op.gaps[FFR_SIDE_RIGHT] == 1);
-    CHECK(op.gap_start_mm[FFR_SIDE_RIGHT] < 0.0f);
     CHECK_NEAR(op.gap_end_mm[FFR_SIDE_RIGHT], 920.0 - 300.0, 3.0);
     CHECK_NEAR(ffr_gap_middle_mm(&op, &cfg, FFR_SIDE_RIGHT), 920.0f - 300.0f - cfg.hallway_half_mm, 3.0);
     /* a step that starts seeing the room's wall through the door: the hallway is the first */
     gaps_drive(&op, &cfg, 700.0f, 0.0f, 0.0f, 1250.0f, 0.0f);
     CHECK(op.gaps[FFR_SIDE_RIGHT] == 1);
     CHECK_NEAR(ffr_gap_middle_mm(&op, &cfg, FFR_SIDE_RIGHT) + 700.0f, 1170.0, 6.0);
-}
-
-TEST(gaps_an_opening_wider_than_a_hallway_is_put_by_its_far_edge)
-{
-    /* edges 1000 mm apart: not one hallway or door (a door and a hallway
-     * seen as one): half a hallway before the far edge, not the middle */
-    ffr_config_t cfg;
-    ffr_openings_t op;
-    ffr_config_default(&cfg);
-    ffr_openings_reset(&op);
-    op.gaps[FFR_SIDE_LEFT] = 1;
-    op.gap_start_mm[FFR_SIDE_LEFT] = 400.0f;
-    op.gap_end_mm[FFR_SIDE_LEFT] = 1400.0f;
-    CHECK_NEAR(ffr_gap_middle_mm(&op, &cfg, FFR_SIDE_LEFT), 1400.0f - cfg.hallway_half_mm, 1e-3);
-    op.gap_end_mm[FFR_SIDE_LEFT] = 900.0f;
-    CHECK_NEAR(ffr_gap_middle_mm(&op, &cfg, FFR_SIDE_LEFT), 650.0, 1e-3);
 }
 
 TEST(gaps_a_yawed_robot_puts_the_far_edge_along_the_corridor)
@@ -261,6 +242,41 @@ TEST(gaps_a_yawed_robot_puts_the_far_edge_along_the_corridor)
     err_not = op.gap_end_mm[FFR_SIDE_RIGHT] - (920.0f - 300.0f) / ffr_cosf(th);
     CHECK(ffr_absf(err_told) < 10.0f);
     CHECK(err_not < -35.0f);
+}
+
+TEST(gaps_the_far_edge_is_refined_from_nearer_hits_on_its_face)
+{
+    /* a part whose output is 60 mV low (within a GP2D12's datasheet spread
+     * of +-150 mV) reads ~5 cm long at 47 cm but 1.5 cm at 24 cm: the far
+     * wall's first hit is put ~2 cm beyond the edge; the later hits on the same face, each from nearer, bring the
+     * edge back; the hits on the wall end and the side after it (moving on
+     * with the robot) are not taken */
+    ffr_config_t cfg;
+    ffr_openings_t op;
+    float d = 0.0f, x = 300.0f;
+    float first_err = 0.0f;
+    ffr_config_default(&cfg);
+    ffr_openings_reset(&op);
+    for (; x < 760.0f; x += 3.0f, d += 3.0f) {
+        float ir[FFR_IR_COUNT];
+        ffr_ir_geom_t g;
+        int i;
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            ir[i] = seg_beam_mm(&cfg, x, 0.0f, 0.0f, i);
+        }
+        if (ffr_ir_valid(&cfg, ir[FFR_IR_RF])) {
+            float mv = cfg.ir_k_mv_mm / (ir[FFR_IR_RF] + cfg.ir_d0_mm) - 60.0f;
+            ir[FFR_IR_RF] = cfg.ir_k_mv_mm / mv - cfg.ir_d0_mm;
+        }
+        ffr_gaps_update(&op, &cfg, rig_geom(&g, &cfg, ir), ir, d, 3.0f, 0.0f);
+        if (op.gaps[FFR_SIDE_RIGHT] == 1 && first_err == 0.0f) {
+            first_err = op.gap_end_mm[FFR_SIDE_RIGHT] - (920.0f - 300.0f);
+        }
+    }
+    CHECK(op.gaps[FFR_SIDE_RIGHT] == 1);
+    CHECK(first_err > 15.0f);
+    /* about half of it left, what the part's error is at the corner's range */
+    CHECK(ffr_absf(op.gap_end_mm[FFR_SIDE_RIGHT] - (920.0f - 300.0f)) < 0.6f * first_err);
 }
 
 TEST(gaps_a_spike_is_no_wall_and_a_dropout_no_opening)
@@ -356,9 +372,9 @@ SUITE(openings,
       TEST_REF(a_wall_then_open_is_an_opening_and_stays_one),
       TEST_REF(a_dropout_counts_half),
       TEST_REF(a_hit_jumping_out_is_past_the_wall_end_a_drift_is_followed),
-      TEST_REF(gaps_a_door_then_a_hallway_are_two_openings_each_put_by_its_edges),
+      TEST_REF(gaps_a_door_then_a_hallway_are_two_openings_each_put_by_its_far_edge),
       TEST_REF(gaps_a_step_that_starts_in_an_opening_counts_it_from_its_far_edge),
-      TEST_REF(gaps_an_opening_wider_than_a_hallway_is_put_by_its_far_edge),
       TEST_REF(gaps_a_yawed_robot_puts_the_far_edge_along_the_corridor),
+      TEST_REF(gaps_the_far_edge_is_refined_from_nearer_hits_on_its_face),
       TEST_REF(gaps_a_spike_is_no_wall_and_a_dropout_no_opening),
       TEST_REF(gaps_follow_stops_in_the_middle_of_the_nth_opening));
