@@ -3,8 +3,8 @@
  * the robot from home through the rooms by what its sensors see ("follow the
  * right wall until the left one ends, turn left, search the room"), never by
  * stored arena coordinates. Each step ends on a sensed event or an odometry
- * distance measured from one (the default program's steps all end on sensed
- * events; FORWARD, a distance of the map, stays for users' programs).
+ * distance measured from one (FORWARD, a distance of the map: the default
+ * program has one left, docs/firmware.md "Route program").
  */
 #include "ffr_internal.h"
 
