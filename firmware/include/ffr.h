@@ -54,14 +54,18 @@ typedef enum {
     FFR_EV_FRONT = 0,  /* wall ahead closer than front_stop_mm                  */
     FFR_EV_OPEN_L = 1, /* the left wall ends (a wall seen, then an opening)     */
     FFR_EV_OPEN_R = 2, /* the right wall ends                                   */
-    FFR_EV_LINE = 3    /* a white line under the line sensor                    */
+    FFR_EV_LINE = 3,   /* a white line under the line sensor                    */
+    FFR_EV_GAP_L = 4,  /* the arg-th opening on the left (0 = the first), seen
+                        * whole: open, then a wall again; the robot goes on to
+                        * half a hallway before its far edge (openings.c)      */
+    FFR_EV_GAP_R = 5   /* the same on the right                                 */
 } ffr_event_t;
 
 typedef struct {
     uint8_t op;     /* ffr_op_t                       */
     uint8_t side;   /* ffr_side_t (FOLLOW, FORWARD, HOME) */
     uint8_t event;  /* ffr_event_t (FOLLOW)           */
-    uint8_t arg;    /* room number for ROOM           */
+    uint8_t arg;    /* room number for ROOM; n-th opening for GAP_L/R (0 = 1st) */
     int16_t param;  /* degrees (TURN), mm (FORWARD)   */
     int16_t reserved;
 } ffr_step_t;
@@ -218,6 +222,14 @@ typedef struct {
     float open_at_mm[2];           /* odometry distance where it opened       */
     float rear_at_mm[2];           /* where the rear ranger last saw the wall */
     float since_open_mm[2];        /* travel since the side last read open    */
+    /* whole openings (GAP events): the front ranger alone, from the step's start */
+    uint8_t gap_open[2];           /* the side reads open now (confirmed)     */
+    uint8_t gaps[2];               /* openings seen whole (open, then a wall) */
+    uint8_t gap_track[2];          /* the far edge of the last one still seen: refined */
+    float gap_run_mm[2];           /* travel of the current run (wall or open) */
+    float gap_first_mm[2];         /* where the current run of wall hits began */
+    float gap_end_mm[2];           /* the last whole opening's far edge (the wall after it) */
+    float gap_since_mm[2];         /* travel since the far edge was last refined */
 } ffr_openings_t;
 
 typedef struct {

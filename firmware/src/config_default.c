@@ -34,7 +34,11 @@ static void step(ffr_config_t *c, uint8_t op, uint8_t side, uint8_t event, uint8
  * The default route, from the home circle facing up the east hallway.
  * Rooms are visited 1 (MID), 2 (TL), 3 (BL), 4 (BR). Doors are found by
  * their wall ending ("FOLLOW ... OPEN"), so a door moved along its wall is
- * still found; the two FORWARD legs cross junctions with no wall to sense.
+ * still found. Four legs still cross junctions by a distance of the map
+ * (FORWARD); each one's sensed form is in its comment (FOLLOW_GAP: count the
+ * openings on a side, stop half a hallway before the n-th one's far edge),
+ * not the default yet: it lost missions on the hold-out sweeps
+ * (docs/robustness.md, "The route's junction legs sensed").
  */
 static void default_route(ffr_config_t *c)
 {
@@ -59,7 +63,8 @@ static void default_route(ffr_config_t *c)
     TURN(-90);              /* 17                                              */
     ROOM(3);                /* 18                                              */
     TURN(90);               /* 19 out of room 3 facing east: north             */
-    FORWARD(LEFT, 440);     /* 20 across the corridor to room 4's door         */
+    FORWARD(LEFT, 440);     /* 20 across the corridor to room 4's door
+                             *    (sensed: FOLLOW_GAP(LEFT, R, 1))             */
     TURN(-90);              /* 21                                              */
     ROOM(4);                /* 22                                              */
     END();                  /* 23 no flame anywhere                            */
@@ -74,19 +79,21 @@ static void default_route(ffr_config_t *c)
     TURN(90);               /* 28 east                                         */
     FOLLOW(RIGHT, OPEN_R);  /* 29 until the corridor opens on the right        */
     TURN(-90);              /* 30 south                                        */
-    FORWARD(RIGHT, 460);    /* 31 to the middle hallway                        */
+    FORWARD(RIGHT, 460);    /* 31 to the middle hallway
+                             *    (sensed: FOLLOW_GAP(RIGHT, L, 1))            */
     TURN(90);               /* 32 east                                         */
     HOME(RIGHT);            /* 33                                              */
     /* home from room 3 (leaving it eastward) */
     c->return_start[2] = c->route_len;
     TURN(90);               /* 34 north                                        */
-    FORWARD(LEFT, 920);     /* 35 up the corridor to the middle hallway        */
+    FORWARD(LEFT, 920);     /* 35 up the corridor to the middle hallway
+                             *    (sensed: FOLLOW_GAP(LEFT, R, 2))             */
     TURN(-90);              /* 36 east                                         */
     HOME(RIGHT);            /* 37                                              */
     /* home from room 4 (leaving it westward) */
     c->return_start[3] = c->route_len;
     TURN(-90);              /* 38 north                                        */
-    FORWARD(LEFT, 480);     /* 39                                              */
+    FORWARD(LEFT, 480);     /* 39 (sensed: FOLLOW_GAP(LEFT, R, 1))             */
     TURN(-90);              /* 40 east                                         */
     HOME(RIGHT);            /* 41                                              */
 }

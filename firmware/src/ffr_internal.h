@@ -177,6 +177,14 @@ void ffr_openings_reset(ffr_openings_t *op);
 void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_ir_geom_t *g,
                          const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm);
 int ffr_opening(const ffr_openings_t *op, int side);
+/* 1 once the n-th (0 or 1: the first) whole opening on a side has been seen
+ * this step; where its middle is, as an odometry distance. */
+int ffr_gap(const ffr_openings_t *op, int side, uint8_t n);
+/* Each tick after ffr_openings_update: the whole openings' front-ranger
+ * count; yaw_rad = the heading minus the corridor's (route.heading_ref_rad). */
+void ffr_gaps_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_ir_geom_t *g,
+                     const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm, float yaw_rad);
+float ffr_gap_middle_mm(const ffr_openings_t *op, const ffr_config_t *cfg, int side);
 
 /* room.c: the room task (Fig. 11) and the flame task (Fig. 12), one handler
  * a phase. It writes no route state: what route.c must do, it returns. */

@@ -69,14 +69,14 @@ static const char *const k_fail_names[] = {
 };
 static const char *const k_op_names[] = {"END", "FOLLOW", "TURN", "FORWARD", "ROOM", "HOME"};
 static const char *const k_side_names[] = {"LEFT", "RIGHT", "NONE"};
-static const char *const k_event_names[] = {"FRONT", "OPEN_L", "OPEN_R", "LINE"};
+static const char *const k_event_names[] = {"FRONT", "OPEN_L", "OPEN_R", "LINE", "GAP_L", "GAP_R"};
 
 #define COUNT_OF(a) (sizeof(a) / sizeof((a)[0]))
 FFR_STATIC_ASSERT(state_names, COUNT_OF(k_state_names) == FFR_ST_COUNT);
 FFR_STATIC_ASSERT(fail_names, COUNT_OF(k_fail_names) == FFR_FAIL_LOST_FLAME + 1);
 FFR_STATIC_ASSERT(op_names, COUNT_OF(k_op_names) == FFR_OP_HOME + 1);
 FFR_STATIC_ASSERT(side_names, COUNT_OF(k_side_names) == FFR_SIDE_NONE + 1);
-FFR_STATIC_ASSERT(event_names, COUNT_OF(k_event_names) == FFR_EV_LINE + 1);
+FFR_STATIC_ASSERT(event_names, COUNT_OF(k_event_names) == FFR_EV_GAP_R + 1);
 
 uint32_t ffr_version(void) { return (FFR_CONTRACT_MAJOR << 16) | FFR_CONTRACT_MINOR; }
 

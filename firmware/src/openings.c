@@ -38,6 +38,78 @@ void ffr_openings_reset(ffr_openings_t *op)
         op->open_at_mm[i] = 0.0f;
         op->rear_at_mm[i] = 0.0f;
         op->since_open_mm[i] = 1.0e9f; /* never, in this step */
+        op->gap_open[i] = 0;
+        op->gaps[i] = 0;
+        op->gap_track[i] = 0;
+        op->gap_since_mm[i] = 0.0f;
+        op->gap_run_mm[i] = 0.0f;
+        op->gap_first_mm[i] = 0.0f;
+        op->gap_end_mm[i] = 0.0f;
+    }
+}
+
+/* Whole openings on one side, by the front corner ranger alone: a run of
+ * open readings (open_confirm_mm, a missing reading counting half as above)
+ * then a run of wall hits beside (wall_seen_mm) is one opening, ending where
+ * the wall after it begins (the first hit of the run, then its nearer hits
+ * on the same face: gap_refine). The ranger looks ahead at 45 degrees, so
+ * the first hit beside after an opening is the far wall's face at the
+ * opening's far edge, and its distance ahead puts that edge. A side open
+ * from the step's start counts as an opening once a wall follows: a step
+ * that begins in a door or a junction counts it. */
+/* a later hit on the far wall is taken for its edge when it is within half
+ * the travel since the last one taken of that one: the hits on a wall
+ * across (the edge's face) stay put as the robot comes nearer, each from a
+ * shorter range (a GP2D12 part's error shrinks with the range), while hits
+ * on a wall alongside move on with the robot (by all of the travel) and are
+ * not taken */
+
+static void gap_refine(ffr_openings_t *op, int side, float *edge, float at_mm, float step_mm)
+{
+    op->gap_since_mm[side] += step_mm;
+    if (ffr_absf(at_mm - *edge) <= 0.5f * op->gap_since_mm[side]) {
+        *edge = at_mm;
+        op->gap_since_mm[side] = 0.0f;
+    }
+}
+
+static void gap_update(ffr_openings_t *op, const ffr_config_t *cfg, int side, int wall, int valid, float at_mm,
+                       float step_mm)
+{
+    if (wall) {
+        if (op->gap_open[side]) {
+            if (op->gap_run_mm[side] <= 0.0f) {
+                op->gap_first_mm[side] = at_mm;
+                op->gap_since_mm[side] = 0.0f;
+            } else {
+                gap_refine(op, side, &op->gap_first_mm[side], at_mm, step_mm);
+            }
+            op->gap_run_mm[side] += step_mm;
+            if (op->gap_run_mm[side] >= cfg->wall_seen_mm) {
+                op->gap_end_mm[side] = op->gap_first_mm[side];
+                if (op->gaps[side] < 255u) {
+                    op->gaps[side] = (uint8_t)(op->gaps[side] + 1u);
+                }
+                op->gap_open[side] = 0;
+                op->gap_run_mm[side] = 0.0f;
+                op->gap_track[side] = 1;
+            }
+        } else {
+            if (op->gap_track[side]) {
+                /* the last opening's far edge, seen nearer */
+                gap_refine(op, side, &op->gap_end_mm[side], at_mm, step_mm);
+            }
+            op->gap_run_mm[side] = 0.0f;
+        }
+    } else if (op->gap_open[side]) {
+        op->gap_run_mm[side] = 0.0f; /* the wall's run broke: it was not one yet */
+    } else {
+        op->gap_run_mm[side] += valid ? step_mm : 0.5f * step_mm;
+        if (op->gap_run_mm[side] >= cfg->open_confirm_mm) {
+            op->gap_open[side] = 1;
+            op->gap_track[side] = 0;
+            op->gap_run_mm[side] = 0.0f;
+        }
     }
 }
 
@@ -112,3 +184,30 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
 }
 
 int ffr_opening(const ffr_openings_t *op, int side) { return op->opened[side] != 0; }
+
+void ffr_gaps_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_ir_geom_t *g,
+                     const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm, float yaw_rad)
+{
+    /* a hit's distance along the corridor: the robot yawed by yaw_rad off
+     * it puts a hit to the side ahead or behind of where the robot frame's x
+     * says (9 degrees: 5 cm at the 35 cm a far edge is first seen aside) */
+    float c = ffr_cosf(yaw_rad);
+    float sn = ffr_sinf(yaw_rad);
+    int side;
+    for (side = 0; side < 2; ++side) {
+        int f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
+        float fx = 0.0f, fy = 0.0f;
+        int wall = ffr_hit_beside(cfg, g, ir_mm, f, &fx, &fy);
+        gap_update(op, cfg, side, wall, ffr_ir_valid(cfg, ir_mm[f]), dist_mm + fx * c - fy * sn, step_mm);
+    }
+}
+
+int ffr_gap(const ffr_openings_t *op, int side, uint8_t n) { return op->gaps[side] >= (n > 0u ? n : 1u); }
+
+float ffr_gap_middle_mm(const ffr_openings_t *op, const ffr_config_t *cfg, int side)
+{
+    /* half a hallway before the far edge (not the middle of the two edges:
+     * the wall before the opening is last hit late, the ranger's beam being
+     * wide, so a middle taken from it fell late; docs/firmware.md) */
+    return op->gap_end_mm[side] - cfg->hallway_half_mm;
+}

@@ -3,7 +3,8 @@
  * the robot from home through the rooms by what its sensors see ("follow the
  * right wall until the left one ends, turn left, search the room"), never by
  * stored arena coordinates. Each step ends on a sensed event or an odometry
- * distance measured from one.
+ * distance measured from one (FORWARD, a distance of the map: the default
+ * program has one left, docs/firmware.md "Route program").
  */
 #include "ffr_internal.h"
 
@@ -99,6 +100,10 @@ static int event_fired(ffr_state_t *st, const ffr_step_t *s)
         return ffr_opening(&st->open, FFR_SIDE_RIGHT);
     case FFR_EV_LINE:
         return st->lines.edge;
+    case FFR_EV_GAP_L:
+        return ffr_gap(&st->open, FFR_SIDE_LEFT, s->arg);
+    case FFR_EV_GAP_R:
+        return ffr_gap(&st->open, FFR_SIDE_RIGHT, s->arg);
     default:
         return 1;
     }
@@ -118,6 +123,12 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
                     int side = s->event == FFR_EV_OPEN_L ? FFR_SIDE_LEFT : FFR_SIDE_RIGHT;
                     st->route.goal_mm = st->open.open_at_mm[side] + cfg->hallway_half_mm;
                     st->route.phase = PH_WRAP;
+                } else if (s->event == FFR_EV_GAP_L || s->event == FFR_EV_GAP_R) {
+                    /* on to the opening's middle (the far edge is seen ~30 cm ahead;
+                     * a robot already past the middle stops where it is) */
+                    int side = s->event == FFR_EV_GAP_L ? FFR_SIDE_LEFT : FFR_SIDE_RIGHT;
+                    st->route.goal_mm = ffr_gap_middle_mm(&st->open, cfg, side);
+                    st->route.phase = PH_WRAP;
                 } else {
                     ffr_stop(st);
                     next(st);
@@ -127,6 +138,11 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
                 ffr_drive_corridor(st, s->side, cfg->cruise_speed_mm_s);
                 return;
             }
+        }
+        if (s->event == FFR_EV_GAP_L || s->event == FFR_EV_GAP_R) {
+            /* the far edge is refined as the robot nears it (openings.c) */
+            st->route.goal_mm = ffr_gap_middle_mm(&st->open, cfg, s->event == FFR_EV_GAP_L ? FFR_SIDE_LEFT
+                                                                                            : FFR_SIDE_RIGHT);
         }
         if (drive_to_goal(st)) {
             next(st);
