@@ -39,9 +39,16 @@ def test_ffr_run_over_the_wire_gives_the_in_process_result(url: str) -> None:
     assert a == b
 
 
-def test_board_killed_mid_mission_exits_2_within_a_second_and_leaves_nothing() -> None:
+# A dead board is known at once, not after an answer's timeout: the wait looks every 0.1 s
+# (wire_link.GONE_POLL_S). With the timeout set to 10 s, ending within half of it can only be that
+# look, and leaves seconds for a busy machine's stalls (seen: 1 s on 2 cores at a load of 8). (The
+# board's end can cost one retry: its line closes a moment before its process is reaped.)
+GONE_URL = "host-board:serial#step_delay_us=300&timeout_s=10"
+
+
+def test_board_killed_mid_mission_exits_2_at_once_and_leaves_nothing() -> None:
     # a slowed board (0.3 ms a tick) so that the mission is surely under way when it is killed
-    p = subprocess.Popen([*FFR, "run", "--room", "4", "--link", "host-board:serial#step_delay_us=300"], cwd=REPO,
+    p = subprocess.Popen([*FFR, "run", "--room", "4", "--link", GONE_URL], cwd=REPO,
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         deadline = time.monotonic() + 30
@@ -61,9 +68,9 @@ def test_board_killed_mid_mission_exits_2_within_a_second_and_leaves_nothing() -
             p.kill()
             p.wait()
     assert p.returncode == 2
-    assert took < 1.0, f"took {took:.2f} s"
+    assert took < 5.0, f"took {took:.2f} s: the 10 s answer timeout, not the look for a dead board"
     assert err.count("\n") == 1
-    assert err.startswith("ffr: error: host-board:serial#step_delay_us=300: board gone at tick ")
+    assert err.startswith(f"ffr: error: {GONE_URL}: board gone at tick ")
     assert f"board process {boards[0]} killed by SIGKILL" in err and "sent " in err and "retries " in err
     assert "Traceback" not in err and out == ""
     assert not alive(boards[0])
