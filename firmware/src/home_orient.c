@@ -66,6 +66,11 @@
 #define ARC_BAND_MM 30.0f         /* an arc's path: the half width plus this       */
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
 #define ESCAPE_SPEED_MM_S 120.0f  /* chosen: slow, so a wall unseen costs no bump  */
+/* the shift is not made if it is within ACROSS_TOL_MM across the route's
+ * first direction and SHIFT_TOL_MM along it (chosen: the body's side then
+ * stays 30 mm or more inside a hallway's wall_target_mm line, 230 - 100 -
+ * 100; the wall following squares it up on the way) */
+#define ACROSS_TOL_MM 100.0f
 
 enum { PH_SWEEP = 0, PH_CENTRE = 1, PH_SHIFT_TURN = 2, PH_SHIFT_DRIVE = 3, PH_AIM = 4, PH_TURN = 5, PH_DONE = 6,
        PH_CLEAR = 7, PH_ESCAPE = 8 };
@@ -590,8 +595,15 @@ int ffr_orient_step(ffr_state_t *st)
             return 0;
         }
         if (done < ffr_absf(sweep) - 2.0f * FFR_DEG) {
-            /* on at full turn rate past the end: no slowing down to stop there */
-            st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->h0_rad + 1.5f * sweep);
+            /* on at full turn rate until the spin, let go, would coast to
+             * the end (the tracks' deceleration limit): it records on while
+             * it coasts, and stands still at the end, not past it */
+            float rate = (st->odo.v_mm_s[1] - st->odo.v_mm_s[0]) / cfg->track_width_mm;
+            float decel = 2.0f * cfg->accel_mm_s2 / cfg->track_width_mm;
+            float coast = rate * rate / (2.0f * decel);
+            if (done + coast < ffr_absf(sweep) - 2.0f * FFR_DEG) {
+                st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->h0_rad + 1.5f * sweep);
+            }
             return 0;
         }
         if (o->w < SEG_MIN_TOTAL_MM) {
@@ -608,6 +620,22 @@ int ffr_orient_step(ffr_state_t *st)
     if (o->phase == PH_CENTRE) {
         float dx, dy, cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
         ffr_orient_centre(o, cfg, o->dir0_rad, cx, cy, &dx, &dy);
+        if (dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
+            /* the route's first direction as seen from where the shift would
+             * end: a shift small across it is not worth a turn, a drive and
+             * a turn back (the wall following takes it up) */
+            int k = ffr_orient_choose(o, cfg, o->dir0_rad, st->odo.heading_rad, cx + dx, cy + dy);
+            if (k >= 0) {
+                float target = nearest(st->odo.heading_rad, o->dir0_rad + (float)k * 0.5f * FFR_PI);
+                float across = dy * ffr_cosf(target) - dx * ffr_sinf(target);
+                float along = dx * ffr_cosf(target) + dy * ffr_sinf(target);
+                if (ffr_absf(across) <= ACROSS_TOL_MM && ffr_absf(along) <= SHIFT_TOL_MM) {
+                    o->target_rad = target;
+                    o->phase = PH_TURN;
+                    return 0;
+                }
+            }
+        }
         if (dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
             float dir = ffr_atan2f(dy, dx);
             float fwd = nearest(st->odo.heading_rad, dir);

@@ -364,10 +364,61 @@ TEST(room_to_turn_first_then_the_sweep)
     }
 }
 
+
+/* The whole firmware beside one wall to the right of the way to go (+x),
+ * as the 2004 arena's home, placed facing any way: it faces +x at the end,
+ * no corner of the body reaches the wall, and it stands wall_target_mm (230)
+ * off the wall, except that a shift of at most 100 mm across the way to go
+ * is not made (the wall following takes it up): 310 mm off the wall it stays
+ * where it was placed, 420 mm off it moves 190 mm toward it. */
+static void beside_one_wall(float gap, float end_y)
+{
+    ffr_config_t cfg;
+    float th;
+    ffr_config_default(&cfg);
+    for (th = 0.0f; th < 2.0f * PI_F - 0.01f; th += PI_F / 12.0f) {
+        rig_walls_t w = {5000.0f, -gap, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        rig_t r;
+        float ir[FFR_IR_COUNT];
+        float last_y = 0.0f, last_th = th;
+        int i, k, clear = 1;
+        rig_init(&r, &cfg);
+        r.st.cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+        r.st.odo.heading_rad = th;
+        r.in.start = 1;
+        for (i = 0; i < 1500; ++i) {
+            readings(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+            for (k = 0; k < FFR_IR_COUNT; ++k) {
+                r.in.ir_mv[k] = ffr_ir_valid(&cfg, ir[k]) ? rig_mv_for_mm(&cfg, ir[k]) : 0u;
+            }
+            last_y = r.st.odo.y_mm;
+            last_th = r.st.odo.heading_rad;
+            rig_tick(&r);
+            if (r.out.state != FFR_ST_ORIENT && i > 2) {
+                break;
+            }
+            clear &= body_clear(&w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+        }
+        CHECK(r.out.state == FFR_ST_FOLLOW);
+        CHECK(clear);
+        CHECK_NEAR(last_y, end_y, 20.0f);
+        CHECK(ffr_cosf(last_th) > ffr_cosf(8.0f * FFR_DEG));
+    }
+}
+
+TEST(a_small_shift_across_the_way_is_not_made)
+{
+    ffr_config_t cfg;
+    ffr_config_default(&cfg);
+    beside_one_wall(310.0f, 0.0f);
+    beside_one_wall(420.0f, -420.0f + cfg.wall_target_mm);
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
       TEST_REF(the_route_direction_by_the_wall_side_rule),
       TEST_REF(the_firmware_orients_before_the_route),
       TEST_REF(the_nearest_wall_from_the_five_rangers),
-      TEST_REF(room_to_turn_first_then_the_sweep));
+      TEST_REF(room_to_turn_first_then_the_sweep),
+      TEST_REF(a_small_shift_across_the_way_is_not_made));
