@@ -595,15 +595,8 @@ int ffr_orient_step(ffr_state_t *st)
             return 0;
         }
         if (done < ffr_absf(sweep) - 2.0f * FFR_DEG) {
-            /* on at full turn rate until the spin, let go, would coast to
-             * the end (the tracks' deceleration limit): it records on while
-             * it coasts, and stands still at the end, not past it */
-            float rate = (st->odo.v_mm_s[1] - st->odo.v_mm_s[0]) / cfg->track_width_mm;
-            float decel = 2.0f * cfg->accel_mm_s2 / cfg->track_width_mm;
-            float coast = rate * rate / (2.0f * decel);
-            if (done + coast < ffr_absf(sweep) - 2.0f * FFR_DEG) {
-                st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->h0_rad + 1.5f * sweep);
-            }
+            /* on at full turn rate past the end: no slowing down to stop there */
+            st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, o->h0_rad + 1.5f * sweep);
             return 0;
         }
         if (o->w < SEG_MIN_TOTAL_MM) {
