@@ -66,11 +66,6 @@
 #define ARC_BAND_MM 30.0f         /* an arc's path: the half width plus this       */
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
 #define ESCAPE_SPEED_MM_S 120.0f  /* chosen: slow, so a wall unseen costs no bump  */
-/* the shift is not made if it is within ACROSS_TOL_MM across the route's
- * first direction and SHIFT_TOL_MM along it (chosen: the body's side then
- * stays 30 mm or more inside a hallway's wall_target_mm line, 230 - 100 -
- * 100; the wall following squares it up on the way) */
-#define ACROSS_TOL_MM 100.0f
 
 enum { PH_SWEEP = 0, PH_CENTRE = 1, PH_SHIFT_TURN = 2, PH_SHIFT_DRIVE = 3, PH_AIM = 4, PH_TURN = 5, PH_DONE = 6,
        PH_CLEAR = 7, PH_ESCAPE = 8 };
@@ -613,7 +608,7 @@ int ffr_orient_step(ffr_state_t *st)
     if (o->phase == PH_CENTRE) {
         float dx, dy, cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
         ffr_orient_centre(o, cfg, o->dir0_rad, cx, cy, &dx, &dy);
-        if (dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
+        if (cfg->home_skip_mm > 0.0f && dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
             /* the route's first direction as seen from where the shift would
              * end: a shift small across it is not worth a turn, a drive and
              * a turn back (the wall following takes it up) */
@@ -622,7 +617,7 @@ int ffr_orient_step(ffr_state_t *st)
                 float target = nearest(st->odo.heading_rad, o->dir0_rad + (float)k * 0.5f * FFR_PI);
                 float across = dy * ffr_cosf(target) - dx * ffr_sinf(target);
                 float along = dx * ffr_cosf(target) + dy * ffr_sinf(target);
-                if (ffr_absf(across) <= ACROSS_TOL_MM && ffr_absf(along) <= SHIFT_TOL_MM) {
+                if (ffr_absf(across) <= cfg->home_skip_mm && ffr_absf(along) <= SHIFT_TOL_MM) {
                     o->target_rad = target;
                     o->phase = PH_TURN;
                     return 0;

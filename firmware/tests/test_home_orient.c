@@ -368,14 +368,16 @@ TEST(room_to_turn_first_then_the_sweep)
 /* The whole firmware beside one wall to the right of the way to go (+x),
  * as the 2004 arena's home, placed facing any way: it faces +x at the end,
  * no corner of the body reaches the wall, and it stands wall_target_mm (230)
- * off the wall, except that a shift of at most 100 mm across the way to go
- * is not made (the wall following takes it up): 310 mm off the wall it stays
- * where it was placed, 420 mm off it moves 190 mm toward it. */
-static void beside_one_wall(float gap, float end_y)
+ * off the wall, except that with home_skip_mm = 100 a shift of at most
+ * 100 mm across the way to go is not made (the wall following takes it
+ * up): 310 mm off the wall it stays where it was placed, 420 mm off it
+ * moves 190 mm toward it. */
+static void beside_one_wall(float skip, float gap, float end_y)
 {
     ffr_config_t cfg;
     float th;
     ffr_config_default(&cfg);
+    cfg.home_skip_mm = skip;
     for (th = 0.0f; th < 2.0f * PI_F - 0.01f; th += PI_F / 12.0f) {
         rig_walls_t w = {5000.0f, -gap, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
         rig_t r;
@@ -410,8 +412,10 @@ TEST(a_small_shift_across_the_way_is_not_made)
 {
     ffr_config_t cfg;
     ffr_config_default(&cfg);
-    beside_one_wall(310.0f, 0.0f);
-    beside_one_wall(420.0f, -420.0f + cfg.wall_target_mm);
+    beside_one_wall(100.0f, 310.0f, 0.0f);
+    beside_one_wall(100.0f, 420.0f, -420.0f + cfg.wall_target_mm);
+    /* the default (0): every shift over 40 mm is made */
+    beside_one_wall(0.0f, 310.0f, -310.0f + cfg.wall_target_mm);
 }
 
 SUITE(home_orient,
