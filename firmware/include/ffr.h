@@ -150,9 +150,6 @@ struct ffr_config {
                                   * FFR_HOME_WALL_LEFT/RIGHT; FFR_HOME_WALL_ANY: walls on
                                   * the most sides; FFR_HOME_AS_PLACED: no orientation,
                                   * the robot is placed facing it */
-    float home_skip_mm;          /* home_orient.c: a shift to stand at wall_target_mm at most
-                                  * this far across the route's first direction (and at most
-                                  * 40 mm along it) is not made; 0: every shift over 40 mm is */
 
     ffr_step_t route[FFR_ROUTE_MAX];
     uint8_t return_start[FFR_ROOMS_MAX]; /* route index of the way home from room k+1 */

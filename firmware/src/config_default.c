@@ -168,7 +168,6 @@ void ffr_config_default(ffr_config_t *c)
     c->scan_dir = 0u;
     /* the 2004 arena's home: open up the east hallway, its outer wall on the right */
     c->home_wall_side = FFR_HOME_WALL_RIGHT;
-    c->home_skip_mm = 0.0f; /* every shift over 40 mm made (docs/firmware.md, "Start") */
 
     default_route(c);
 }
