@@ -280,6 +280,11 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
                        const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT]);
 void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo);
 /* the body's farthest corner from the axle midpoint (it sweeps this circle turning in place) */
+/* the route's first direction k (as ffr_orient_choose, from where the shift
+ * (dx, dy) would end) if that shift is at most skip_mm across it and
+ * SHIFT_TOL_MM along it, so not worth making; else -1 */
+int ffr_orient_skip(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
+                    float cy, float dx, float dy, float skip_mm);
 float ffr_orient_turn_radius_mm(const ffr_config_t *cfg);
 /* the nearest wall seen by the rangers now, in the body's frame: 1 if any,
  * its distance from the axle midpoint and the unit vector toward it (single

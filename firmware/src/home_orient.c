@@ -67,6 +67,15 @@
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
 #define ESCAPE_SPEED_MM_S 120.0f  /* chosen: slow, so a wall unseen costs no bump  */
 
+/* a shift to stand at wall_target_mm at most this far across the route's
+ * first direction (and at most SHIFT_TOL_MM along it) is not made; 0 (the
+ * default): every shift over SHIFT_TOL_MM is. Off: with 100 the nominal
+ * start is faster but the realistic sweep loses missions (docs/firmware.md,
+ * "Cheaper orientation"). Build with -DFFR_HOME_SKIP_MM=100.0f to try it. */
+#ifndef FFR_HOME_SKIP_MM
+#define FFR_HOME_SKIP_MM 0.0f
+#endif
+
 enum { PH_SWEEP = 0, PH_CENTRE = 1, PH_SHIFT_TURN = 2, PH_SHIFT_DRIVE = 3, PH_AIM = 4, PH_TURN = 5, PH_DONE = 6,
        PH_CLEAR = 7, PH_ESCAPE = 8 };
 
@@ -309,6 +318,24 @@ void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, floa
         *dx += s * (k == 0 ? c0 : -s0);
         *dy += s * (k == 0 ? s0 : c0);
     }
+}
+
+int ffr_orient_skip(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
+                    float cy, float dx, float dy, float skip_mm)
+{
+    /* the route's first direction as seen from where the shift would end
+     * (from where it stands, a wall's end the shift is for may lie in the
+     * body's path): a shift small across it is not worth a turn, a drive
+     * and a turn back (the wall following takes it up) */
+    int k = ffr_orient_choose(o, cfg, dir0, heading, cx + dx, cy + dy);
+    float target, across, along;
+    if (k < 0) {
+        return -1;
+    }
+    target = dir0 + (float)k * 0.5f * FFR_PI;
+    across = dy * ffr_cosf(target) - dx * ffr_sinf(target);
+    along = dx * ffr_cosf(target) + dy * ffr_sinf(target);
+    return ffr_absf(across) <= skip_mm && ffr_absf(along) <= SHIFT_TOL_MM ? k : -1;
 }
 
 float ffr_orient_turn_radius_mm(const ffr_config_t *cfg)
@@ -608,6 +635,14 @@ int ffr_orient_step(ffr_state_t *st)
     if (o->phase == PH_CENTRE) {
         float dx, dy, cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
         ffr_orient_centre(o, cfg, o->dir0_rad, cx, cy, &dx, &dy);
+        if (FFR_HOME_SKIP_MM > 0.0f && dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
+            int k = ffr_orient_skip(o, cfg, o->dir0_rad, st->odo.heading_rad, cx, cy, dx, dy, FFR_HOME_SKIP_MM);
+            if (k >= 0) {
+                o->target_rad = nearest(st->odo.heading_rad, o->dir0_rad + (float)k * 0.5f * FFR_PI);
+                o->phase = PH_TURN;
+                return 0;
+            }
+        }
         if (dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
             float dir = ffr_atan2f(dy, dx);
             float fwd = nearest(st->odo.heading_rad, dir);

@@ -8,6 +8,12 @@
 #include "rig.h"
 #include "unit.h"
 
+#ifndef FFR_HOME_SKIP_MM
+#define FFR_HOME_SKIP_MM_BUILT 0.0f
+#else
+#define FFR_HOME_SKIP_MM_BUILT FFR_HOME_SKIP_MM
+#endif
+
 #define PI_F 3.14159265f
 
 /* A sweep in place at the world origin from true heading th0 through `sweep`
@@ -364,10 +370,95 @@ TEST(room_to_turn_first_then_the_sweep)
     }
 }
 
+
+/* The whole firmware beside one wall to the right of the way to go (+x),
+ * as the 2004 arena's home, placed facing any way: it faces +x at the end,
+ * no corner of the body reaches the wall, and it ends end_y off where it
+ * was placed (gap - 230: it stands wall_target_mm off the wall). */
+static void beside_one_wall(float gap, float end_y)
+{
+    ffr_config_t cfg;
+    float th;
+    ffr_config_default(&cfg);
+    for (th = 0.0f; th < 2.0f * PI_F - 0.01f; th += PI_F / 12.0f) {
+        rig_walls_t w = {5000.0f, -gap, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        rig_t r;
+        float ir[FFR_IR_COUNT];
+        float last_y = 0.0f, last_th = th;
+        int i, k, clear = 1;
+        rig_init(&r, &cfg);
+        r.st.cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+        r.st.odo.heading_rad = th;
+        r.in.start = 1;
+        for (i = 0; i < 1500; ++i) {
+            readings(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+            for (k = 0; k < FFR_IR_COUNT; ++k) {
+                r.in.ir_mv[k] = ffr_ir_valid(&cfg, ir[k]) ? rig_mv_for_mm(&cfg, ir[k]) : 0u;
+            }
+            last_y = r.st.odo.y_mm;
+            last_th = r.st.odo.heading_rad;
+            rig_tick(&r);
+            if (r.out.state != FFR_ST_ORIENT && i > 2) {
+                break;
+            }
+            clear &= body_clear(&w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+        }
+        CHECK(r.out.state == FFR_ST_FOLLOW);
+        CHECK(clear);
+        CHECK_NEAR(last_y, end_y, 20.0f);
+        CHECK(ffr_cosf(last_th) > ffr_cosf(8.0f * FFR_DEG));
+    }
+}
+
+TEST(a_small_shift_across_the_way_is_not_made)
+{
+    ffr_config_t cfg;
+    ffr_home_orient_t o;
+    ffr_odometry_t odo;
+    float dx, dy;
+    ffr_config_default(&cfg);
+    ffr_odometry_reset(&odo);
+    ffr_orient_reset(&o, &odo);
+    cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+    /* the 2004 arena's home: the east wall 310 mm off, the island room's
+     * corner 150 mm west and 230 mm north; the way is north (k = 1) */
+    add_wall(&o, 310.0f, 0.0f, 0.0f, 1.0f);
+    {
+        int b;
+        for (b = 0; b < 30; ++b) { /* the island room's bottom wall, west of its corner */
+            float x = -150.0f - 20.0f * (float)b, y = 230.0f;
+            float a = ffr_atan2f(y, x);
+            int bin = (int)(a / (2.0f * PI_F / (float)FFR_ORIENT_BINS));
+            float r = ffr_sqrtf(x * x + y * y);
+            if (bin < FFR_ORIENT_BINS && r < (float)o.bin_mm[bin]) {
+                o.bin_mm[bin] = (uint16_t)r;
+                o.bin_x_mm[bin] = x;
+                o.bin_y_mm[bin] = y;
+            }
+        }
+    }
+    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
+    CHECK_NEAR(dx, 80.0f, 15.0f);
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.5f * PI_F, dx, dy) == 1);
+    /* 80 mm across it: not made with 100, made with 0 or 60 */
+    CHECK(ffr_orient_skip(&o, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy, 100.0f) == 1);
+    CHECK(ffr_orient_skip(&o, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy, 60.0f) == -1);
+    CHECK(ffr_orient_skip(&o, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy, 0.0f) == -1);
+    /* along the way to go it is never skipped beyond 40 mm */
+    CHECK(ffr_orient_skip(&o, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy + 60.0f, 100.0f) == -1);
+    /* the whole firmware as built (FFR_HOME_SKIP_MM, default 0): every
+     * shift over 40 mm is made */
+    if (FFR_HOME_SKIP_MM_BUILT == 0.0f) {
+        beside_one_wall(310.0f, -310.0f + cfg.wall_target_mm);
+    }
+    beside_one_wall(420.0f, -420.0f + cfg.wall_target_mm);
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
       TEST_REF(the_route_direction_by_the_wall_side_rule),
       TEST_REF(the_firmware_orients_before_the_route),
       TEST_REF(the_nearest_wall_from_the_five_rangers),
-      TEST_REF(room_to_turn_first_then_the_sweep));
+      TEST_REF(room_to_turn_first_then_the_sweep),
+      TEST_REF(a_small_shift_across_the_way_is_not_made));
