@@ -16,28 +16,11 @@
 #define SNAP_GAIN 0.5f
 #define REF_MAX_DEG 15.0f
 #define REF_GAIN 0.5f
-/* the held corridor heading is kept within SQUARE_KEEP_DEG of the right
- * angle of odometry's frame nearest it, if within SQUARE_NEAR_DEG of it
- * (chosen: docs/firmware.md, "The held heading kept square") */
-#ifndef SQUARE_KEEP_DEG
-#define SQUARE_KEEP_DEG 1.5f
-#endif
-#define SQUARE_NEAR_DEG 12.0f
 
 void ffr_stop(ffr_state_t *st)
 {
     st->cmd_v_mm_s = 0.0f;
     st->cmd_w_rad_s = 0.0f;
-}
-
-float ffr_square_hold(float heading_ref)
-{
-    float off = ffr_off_square(heading_ref);
-    float keep = SQUARE_KEEP_DEG * FFR_DEG;
-    if (ffr_absf(off) >= SQUARE_NEAR_DEG * FFR_DEG || ffr_absf(off) <= keep) {
-        return heading_ref;
-    }
-    return heading_ref - off + (off > 0.0f ? keep : -keep);
 }
 
 float ffr_stopping_speed(float remaining_mm, float top)
@@ -105,7 +88,13 @@ void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
          * measured; then the tilt taken off it */
         ffr_wall_cal_update(&st->wall_cal, &w, use, st->odo.heading_rad, st->odo.dist_mm);
         ffr_wall_cal_correct(&st->wall_cal, &w, use);
-        if (w.angle_valid) {
+        if (!w.angle_valid) {
+            /* one ranger gives the distance but not the wall's direction: take the
+             * wall to run along the corridor heading, so the steering keeps its
+             * heading feedback (without it, a distance error turns the robot
+             * steadily until the one ranger sees something else) */
+            w.angle_rad = ffr_wrap_pi(st->route.heading_ref_rad - st->odo.heading_rad);
+        } else {
             /* the corridor heading follows the wall's angle (its tilt taken
              * off), quickly; a larger difference is not this wall */
             float diff = ffr_wrap_pi(st->odo.heading_rad + w.angle_rad - st->route.heading_ref_rad);
@@ -113,25 +102,10 @@ void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
                 st->route.heading_ref_rad += cfg->wall_align_gain * diff;
             }
         }
-        /* odometry's frame is square to the walls (the orientation at home,
-         * the walls' fixes above), so the corridor runs along a right angle
-         * of it: what the wall angles move the held heading off that (two
-         * rangers on two corners of a junction, a tilted pair) is kept
-         * small, or a heading held from it later (past a wall's end, after
-         * a turn) steers the robot into the next wall */
-        st->route.heading_ref_rad = ffr_square_hold(st->route.heading_ref_rad);
-        if (!w.angle_valid) {
-            /* one ranger gives the distance but not the wall's direction: take the
-             * wall to run along the corridor heading, so the steering keeps its
-             * heading feedback (without it, a distance error turns the robot
-             * steadily until the one ranger sees something else) */
-            w.angle_rad = ffr_wrap_pi(st->route.heading_ref_rad - st->odo.heading_rad);
-        }
         st->cmd_v_mm_s = v;
         st->cmd_w_rad_s = ffr_wall_follow_yaw(cfg, &w, use);
     } else {
         ffr_wall_cal_restart(&st->wall_cal);
-        st->route.heading_ref_rad = ffr_square_hold(st->route.heading_ref_rad);
         ffr_drive_heading(st, st->route.heading_ref_rad, v);
     }
 }

@@ -105,8 +105,6 @@ int ffr_wall_dir_update(ffr_wall_cal_t *c, const ffr_config_t *cfg, const ffr_od
                         const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT], float *wall_dir);
 /* What a direction (rad) is off the nearest multiple of 90 degrees. */
 float ffr_off_square(float dir);
-/* the right angle of odometry's frame nearest a held heading, if near (drive.c) */
-float ffr_square_hold(float heading_ref);
 
 /* wall_calibration.c: each side's two-ranger wall angle, calibrated from travel. */
 void ffr_wall_cal_reset(ffr_wall_cal_t *c);   /* everything, the learned tilts and hit windows too */
