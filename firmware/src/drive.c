@@ -16,6 +16,12 @@
 #define SNAP_GAIN 0.5f
 #define REF_MAX_DEG 15.0f
 #define REF_GAIN 0.5f
+/* the corridor heading follows a two-ranger wall's direction only within
+ * this of it (chosen; was 12: docs/firmware.md, "The held heading in the
+ * hallway to room 2") */
+#ifndef FOLLOW_REF_MAX_DEG
+#define FOLLOW_REF_MAX_DEG 5.0f
+#endif
 
 void ffr_stop(ffr_state_t *st)
 {
@@ -96,9 +102,12 @@ void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
             w.angle_rad = ffr_wrap_pi(st->route.heading_ref_rad - st->odo.heading_rad);
         } else {
             /* the corridor heading follows the wall's angle (its tilt taken
-             * off), quickly; a larger difference is not this wall */
+             * off), quickly; a larger difference is not this wall: at a
+             * junction's mouth the two rangers hit two walls (a corner
+             * beyond, a wall nearer) and their line runs several degrees off;
+             * odometry's own drift is the walls' fixes' (true_up_heading) */
             float diff = ffr_wrap_pi(st->odo.heading_rad + w.angle_rad - st->route.heading_ref_rad);
-            if (ffr_absf(diff) < 12.0f * FFR_DEG) {
+            if (ffr_absf(diff) < FOLLOW_REF_MAX_DEG * FFR_DEG) {
                 st->route.heading_ref_rad += cfg->wall_align_gain * diff;
             }
         }

@@ -90,8 +90,51 @@ TEST(heading_hold_turns_toward_the_reference)
     CHECK(ffr_heading_hold_yaw(&cfg, 0.0f, -0.2f) < 0.0f);
 }
 
+/* The held corridor heading follows a two-ranger wall only within 5 degrees
+ * of it (drive.c): a pair's line ~10 degrees off is two walls at a
+ * junction's mouth, not drift. Every wall direction from -11 to 11 degrees
+ * off the held heading, either side followed. */
+TEST(the_held_heading_follows_a_wall_only_within_5_degrees)
+{
+    int a, side, t;
+    for (side = FFR_SIDE_LEFT; side <= FFR_SIDE_RIGHT; ++side) {
+        for (a = -11; a <= 11; ++a) {
+            rig_t r;
+            ffr_config_t cfg;
+            float ang = (float)a * FFR_DEG;
+            float ref0 = 0.5f * FFR_PI;
+            float sgn = side == FFR_SIDE_LEFT ? 1.0f : -1.0f;
+            float nx = -sgn * ffr_sinf(ang), ny = sgn * ffr_cosf(ang);
+            int f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
+            int rr = side == FFR_SIDE_LEFT ? FFR_IR_LR : FFR_IR_RR;
+            ffr_config_default(&cfg);
+            rig_init(&r, &cfg);
+            r.st.odo.heading_rad = ref0;
+            r.st.route.heading_ref_rad = ref0;
+            rig_no_walls(&cfg, r.st.ir_mm);
+            /* a wall 230 mm to the side running `ang` off the heading */
+            r.st.ir_mm[f] = reading(&cfg, f, nx, ny, 230.0f);
+            r.st.ir_mm[rr] = reading(&cfg, rr, nx, ny, 230.0f);
+            rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
+            for (t = 0; t < 200; ++t) {
+                ffr_drive_corridor(&r.st, (uint8_t)side, 300.0f);
+            }
+            if (a == -5 || a == 5) {
+                continue; /* exactly the bound: either side of it, by rounding */
+            }
+            if (a > -5 && a < 5) {
+                /* followed: the held heading has gone (nearly all) the way to the wall's */
+                CHECK_NEAR(r.st.route.heading_ref_rad, ref0 + ang, 0.01f * FFR_DEG + 1e-5f);
+            } else {
+                CHECK_NEAR(r.st.route.heading_ref_rad, ref0, 1e-6); /* not this wall: left alone */
+            }
+        }
+    }
+}
+
 SUITE(wall_follow,
       TEST_REF(a_parallel_wall_on_target_needs_no_steering),
       TEST_REF(turned_toward_a_wall_steers_away),
       TEST_REF(too_far_from_a_right_wall_steers_right_the_rear_ranger_alone_gives_distance),
-      TEST_REF(heading_hold_turns_toward_the_reference));
+      TEST_REF(heading_hold_turns_toward_the_reference),
+      TEST_REF(the_held_heading_follows_a_wall_only_within_5_degrees));
