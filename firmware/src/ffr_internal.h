@@ -28,6 +28,7 @@ float ffr_sinf(float x);
 float ffr_cosf(float x);
 float ffr_atan2f(float y, float x);
 float ffr_sqrtf(float x);
+void ffr_add_dir4(float dx, float dy, float len, float *c4, float *s4);
 
 /* ir_calibration.c: GP2D12 mV -> distance from the sensor, mm. */
 #define FFR_IR_NONE(cfg) ((cfg)->ir_max_mm + 1.0f)

@@ -81,3 +81,15 @@ float ffr_sqrtf(float x)
     r = 0.5f * (r + x / r);
     return r;
 }
+
+/* A stretch (dx, dy) of length len weighted into the sums of cos and sin of
+ * 4 x its direction (walls meeting at right angles agree modulo 90 degrees):
+ * the unit vector squared twice as a complex number, no trigonometry (a
+ * tick's budget on a soft-float core). */
+void ffr_add_dir4(float dx, float dy, float len, float *c4, float *s4)
+{
+    float u = dx / len, v = dy / len;
+    float c2 = u * u - v * v, s2 = 2.0f * u * v;
+    *c4 += len * (c2 * c2 - s2 * s2);
+    *s4 += len * (2.0f * c2 * s2);
+}

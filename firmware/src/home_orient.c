@@ -170,13 +170,8 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
             continue;
         }
         if (len <= SEG_MAX_MM) {
-            /* (cos, sin) of 4 x the direction without trigonometry: the unit
-             * vector squared twice as a complex number (a tick's budget on a
-             * soft-float core) */
-            float u = dx / len, v = dy / len;
-            float c2 = u * u - v * v, s2 = 2.0f * u * v;
-            o->c4 += len * (c2 * c2 - s2 * s2);
-            o->s4 += len * (2.0f * c2 * s2);
+            float u = dx / len, v = dy / len; /* the stretch's unit direction */
+            ffr_add_dir4(dx, dy, len, &o->c4, &o->s4);
             o->w += len;
             {
                 /* the wall's line near the robot: its nearest point, if

@@ -121,11 +121,7 @@ void ffr_scan_sq_record(ffr_scan_square_t *q, const ffr_config_t *cfg, const ffr
             continue;
         }
         if (len <= SQ_SEG_MAX_MM) {
-            /* (cos, sin) of 4 x the direction: the unit vector squared twice */
-            float u = dx / len, v = dy / len;
-            float c2 = u * u - v * v, s2 = 2.0f * u * v;
-            q->c4[part] += len * (c2 * c2 - s2 * s2);
-            q->s4[part] += len * (2.0f * c2 * s2);
+            ffr_add_dir4(dx, dy, len, &q->c4[part], &q->s4[part]);
             q->w[part] += len;
             q->wt[part] += len * q->raw_rad;
         }

@@ -91,15 +91,22 @@ void rig_travel(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[F
     }
 }
 
-float rig_beam_mm(const ffr_config_t *cfg, const rig_walls_t *w, int i, float x, float y, float th)
+void rig_ray(const ffr_config_t *cfg, int i, float x, float y, float th, float *mx, float *my, float *ux,
+             float *uy)
 {
     float c = ffr_cosf(th), s = ffr_sinf(th);
-    float mx = x + c * cfg->ir_x_mm[i] - s * cfg->ir_y_mm[i];
-    float my = y + s * cfg->ir_x_mm[i] + c * cfg->ir_y_mm[i];
-    float ux = ffr_cosf(th + cfg->ir_angle_deg[i] * FFR_DEG);
-    float uy = ffr_sinf(th + cfg->ir_angle_deg[i] * FFR_DEG);
+    *mx = x + c * cfg->ir_x_mm[i] - s * cfg->ir_y_mm[i];
+    *my = y + s * cfg->ir_x_mm[i] + c * cfg->ir_y_mm[i];
+    *ux = ffr_cosf(th + cfg->ir_angle_deg[i] * FFR_DEG);
+    *uy = ffr_sinf(th + cfg->ir_angle_deg[i] * FFR_DEG);
+}
+
+float rig_beam_mm(const ffr_config_t *cfg, const rig_walls_t *w, int i, float x, float y, float th)
+{
+    float mx, my, ux, uy;
     float best = FFR_IR_NONE(cfg);
     float d;
+    rig_ray(cfg, i, x, y, th, &mx, &my, &ux, &uy);
     if (uy > 1e-3f) {
         d = (w->left_y - my) / uy;
         best = d < best ? d : best;

@@ -42,6 +42,9 @@ typedef struct {
 
 /* Distance along ranger i's beam to the nearest wall from the true pose (x, y mm,
  * th rad), the part's error added; FFR_IR_NONE past the valid range. */
+/* ranger i's mount (mx, my) and unit beam (ux, uy) in the world, robot at (x, y, th) */
+void rig_ray(const ffr_config_t *cfg, int i, float x, float y, float th, float *mx, float *my, float *ux,
+             float *uy);
 float rig_beam_mm(const ffr_config_t *cfg, const rig_walls_t *w, int i, float x, float y, float th);
 /* tick until the firmware reports `state`; 0 if it does not within max_ticks */
 int rig_run_until_state(rig_t *r, uint8_t state, int max_ticks);

@@ -130,13 +130,10 @@ static float hi_f(float a, float b) { return a > b ? a : b; }
 /* ranger i's range from the true pose (mm, rad) to the nearest face, FFR_IR_NONE past range */
 static float seg_beam_mm(const ffr_config_t *cfg, float x, float y, float th, int i)
 {
-    float c = ffr_cosf(th), s = ffr_sinf(th);
-    float mx = x + c * cfg->ir_x_mm[i] - s * cfg->ir_y_mm[i];
-    float my = y + s * cfg->ir_x_mm[i] + c * cfg->ir_y_mm[i];
-    float ux = ffr_cosf(th + cfg->ir_angle_deg[i] * FFR_DEG);
-    float uy = ffr_sinf(th + cfg->ir_angle_deg[i] * FFR_DEG);
+    float mx, my, ux, uy;
     float best = FFR_IR_NONE(cfg);
     int k;
+    rig_ray(cfg, i, x, y, th, &mx, &my, &ux, &uy);
     for (k = 0; k < N_CORRIDOR; ++k) {
         const seg_t *w = &k_corridor[k];
         float t = -1.0f, p;
