@@ -42,10 +42,12 @@ class WireOptions:
 SIMULATED_WATCHDOG_MS = 5000
 # The first wait for a simulated board's answer when the URL names none. Its transport (a pty, a
 # local socket) loses nothing, so a silence is a stall, not a loss: a board process or QEMU thread
-# not scheduled for a quarter of a second on a busy machine (seen on a fresh CI machine) must not
-# cost a retry. A board that has gone is still known at once: the wait looks for that every
-# tenth of a second (wire_link.GONE_POLL_S).
-SIMULATED_TIMEOUT_S = 1.0
+# not scheduled for a while on a busy machine must not cost a retry. Seen: 0.25 s on a fresh CI
+# machine, then over 1 s on 2 cores running two test suites and two busy loops at once. A board
+# that has gone is still known at once: the wait looks for that every tenth of a second
+# (wire_link.GONE_POLL_S). The step budget leaves room for one retry after such a wait.
+SIMULATED_TIMEOUT_S = 2.0
+SIMULATED_STEP_BUDGET_S = 6.0
 
 
 def simulated_board(opts: WireOptions) -> WireOptions:
@@ -53,6 +55,8 @@ def simulated_board(opts: WireOptions) -> WireOptions:
         opts.watchdog_ms = SIMULATED_WATCHDOG_MS
     if "timeout_s" not in opts.given:
         opts.timeout_s = SIMULATED_TIMEOUT_S
+    if "step_budget_s" not in opts.given:
+        opts.step_budget_s = max(opts.step_budget_s, SIMULATED_STEP_BUDGET_S)
     return opts
 
 

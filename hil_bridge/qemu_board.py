@@ -236,11 +236,9 @@ class QemuEthLink(DatagramLink):
 def open_qemu(url: str) -> QemuLink | QemuEthLink:
     machine, opts = parse_url(url)
     simulated_board(opts)
-    # an emulated board translates its code on first use: give the start-up and each step more time
+    # an emulated board translates its code on first use: give the start-up more time
     if "handshake_timeout_s" not in opts.given:
         opts.handshake_timeout_s = 10.0
-    if "step_budget_s" not in opts.given:
-        opts.step_budget_s = 5.0
     spec = MACHINES.get(machine)
     if spec is None:
         raise LinkError(f"--link = {url!r}: unknown emulated board '{machine}', known: {sorted(MACHINES)}")
