@@ -20,6 +20,7 @@ from hil_bridge.can_link import CanLink
 from hil_bridge.codec import MsgType
 from hil_bridge.native import CBoardLink, CCanRx, CCodec, wire_library
 from hil_bridge.options import WireOptions
+from hil_bridge.owned_board import OwnsItsBoard
 
 _HOST_TO_BOARD = {int(MsgType.INPUTS), int(MsgType.HELLO), int(MsgType.RESET)}
 
@@ -49,7 +50,9 @@ class CanBoard:
         if self.thread.is_alive():
             self.thread.join(timeout_s)
 
-    def gone(self) -> str | None:
+    def gone(self, wait_s: float = 0.0) -> str | None:
+        if wait_s > 0:
+            self.thread.join(wait_s)
         if self.thread.is_alive():
             return None
         return f"board thread ended ({self.error!r})" if self.error else "board thread stopped"
@@ -83,7 +86,7 @@ class CanBoard:
             self.error = exc
 
 
-class HostBoardCanLink(CanLink):
+class HostBoardCanLink(OwnsItsBoard, CanLink):
     """The CAN link to a CAN board it started on a private virtual bus."""
 
     def __init__(self, board: CanBoard, board_bus: can.BusABC, bus: can.BusABC, opts: WireOptions) -> None:
@@ -91,15 +94,9 @@ class HostBoardCanLink(CanLink):
         self._board_bus = board_bus
         super().__init__(bus, opts)
 
-    def _gone(self, wait_s: float = 0.0) -> str | None:
-        return self.board.gone()
-
-    def close(self) -> None:
-        try:
-            super().close()
-        finally:
-            self.board.stop()
-            self._board_bus.shutdown()
+    def _release_board(self) -> None:
+        super()._release_board()
+        self._board_bus.shutdown()
 
 
 _channels = itertools.count()

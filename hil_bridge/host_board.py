@@ -27,6 +27,7 @@ from typing import IO
 from ffr_link.base import LinkError
 from hil_bridge.child_process import describe_exit, stop_process
 from hil_bridge.options import WireOptions, parse_url, simulated_board
+from hil_bridge.owned_board import OwnsItsBoard
 from hil_bridge.serial_link import SerialLink
 from hil_bridge.wire_link import WireLink
 
@@ -112,21 +113,12 @@ def _board_args(opts: WireOptions) -> list[str]:
     return args
 
 
-class HostBoardSerialLink(SerialLink):
+class HostBoardSerialLink(OwnsItsBoard, SerialLink):
     """The serial link to a host board program it started and will stop."""
 
     def __init__(self, board: BoardProcess, port_url: str, opts: WireOptions) -> None:
         self.board = board
         super().__init__(port_url, opts)
-
-    def _gone(self, wait_s: float = 0.0) -> str | None:
-        return self.board.gone(wait_s)
-
-    def close(self) -> None:
-        try:
-            super().close()
-        finally:
-            self.board.stop()
 
 
 def open_host_board_serial(opts: WireOptions) -> HostBoardSerialLink:

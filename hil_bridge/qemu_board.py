@@ -43,6 +43,7 @@ from ffr_link.base import LinkError
 from hil_bridge.child_process import describe_exit, stop_process
 from hil_bridge.datagram_link import DatagramLink
 from hil_bridge.options import WireOptions, parse_url, simulated_board
+from hil_bridge.owned_board import OwnsItsBoard
 from hil_bridge.serial_link import SerialLink
 
 REPO = Path(__file__).resolve().parents[1]
@@ -169,6 +170,18 @@ class QemuBoard:
         shutil.rmtree(self.tmp, ignore_errors=True)
 
 
+class _OwnsQemu(OwnsItsBoard):
+    """Closing also reads the board's step profile (its log outlives QEMU) and removes its files."""
+
+    board: QemuBoard
+    profile: StepProfile | None
+
+    def _release_board(self) -> None:
+        super()._release_board()
+        self.profile = self.board.profile()
+        self.board.cleanup()
+
+
 def _wait_ready(link: QemuLink | QemuEthLink, board: QemuBoard, opts: WireOptions) -> None:
     """QEMU starts the guest (over the UART: once the socket is connected); the first frame waits
     until the board says its link listens (the STM32 USART model drops bytes that arrive before)."""
@@ -182,7 +195,7 @@ def _wait_ready(link: QemuLink | QemuEthLink, board: QemuBoard, opts: WireOption
         time.sleep(0.005)
 
 
-class QemuLink(SerialLink):
+class QemuLink(_OwnsQemu, SerialLink):
     """The serial link to the firmware on an emulated board it started and will stop."""
 
     def __init__(self, board: QemuBoard, opts: WireOptions) -> None:
@@ -200,19 +213,8 @@ class QemuLink(SerialLink):
                 time.sleep(0.02)
         _wait_ready(self, board, opts)
 
-    def _gone(self, wait_s: float = 0.0) -> str | None:
-        return self.board.gone(wait_s)
 
-    def close(self) -> None:
-        try:
-            super().close()
-        finally:
-            self.board.stop()
-            self.profile = self.board.profile()
-            self.board.cleanup()
-
-
-class QemuEthLink(DatagramLink):
+class QemuEthLink(_OwnsQemu, DatagramLink):
     """The datagram link to the firmware on an emulated board's Ethernet, which it started and will stop."""
 
     def __init__(self, board: QemuBoard, opts: WireOptions) -> None:
@@ -220,17 +222,6 @@ class QemuEthLink(DatagramLink):
         self.profile: StepProfile | None = None
         super().__init__(board.host_sock, board.eth_sock, opts)
         _wait_ready(self, board, opts)
-
-    def _gone(self, wait_s: float = 0.0) -> str | None:
-        return self.board.gone(wait_s)
-
-    def close(self) -> None:
-        try:
-            super().close()
-        finally:
-            self.board.stop()
-            self.profile = self.board.profile()
-            self.board.cleanup()
 
 
 def open_qemu(url: str) -> QemuLink | QemuEthLink:
