@@ -117,4 +117,26 @@ void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
         ffr_wall_cal_restart(&st->wall_cal);
         ffr_drive_heading(st, st->route.heading_ref_rad, v);
     }
+    ffr_corridor_guard(st);
+}
+
+/*
+ * A front corner about to touch a wall beside it: the corner is steered off
+ * the wall its ranger sees beside the front half at least as fast as
+ * room_guards.c's leaving law says (this tick's hits). A held
+ * heading 10-20 deg off after a room's exit and the turn out of it (slipping
+ * tracks) let the wall following run the corner into a jamb or a room's
+ * corner before any wall fix took the error off (docs/firmware.md, "A front
+ * corner kept off the walls on the way").
+ */
+void ffr_corridor_guard(ffr_state_t *st)
+{
+    float g = ffr_leave_guard(st);
+    /* at least the guard's push away from the wall: steering already turning
+     * the corner off it as fast is left alone */
+    if (g < 0.0f && st->cmd_w_rad_s > g) {
+        st->cmd_w_rad_s = g;
+    } else if (g > 0.0f && st->cmd_w_rad_s < g) {
+        st->cmd_w_rad_s = g;
+    }
 }

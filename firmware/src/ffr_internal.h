@@ -248,6 +248,10 @@ float ffr_scan_room_offset(const ffr_state_t *st);
 
 /* drive.c: corridor driving shared by the route steps. */
 void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed);
+/* A front corner's ranger seeing a wall beside the front half: the yaw
+ * command (cmd_w_rad_s) plus the leaving guard's push off it, within the
+ * turn rate. Called by the corridor driving and the route's last stretches. */
+void ffr_corridor_guard(ffr_state_t *st);
 void ffr_drive_heading(ffr_state_t *st, float heading, float speed);
 void ffr_stop(ffr_state_t *st);
 /* Speed (mm/s) for `remaining_mm` to a stopping point: slows into the stop

@@ -85,6 +85,7 @@ static int drive_to_goal(ffr_state_t *st)
         return 1;
     }
     ffr_drive_heading(st, st->route.heading_ref_rad, ffr_stopping_speed(left, cfg->cruise_speed_mm_s));
+    ffr_corridor_guard(st);
     return 0;
 }
 

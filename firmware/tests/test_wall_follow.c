@@ -132,9 +132,114 @@ TEST(the_held_heading_follows_a_wall_only_within_5_degrees)
     }
 }
 
+/* A front corner near a wall beside it (drive.c, ffr_corridor_guard): the
+ * robot turned 0-20 degrees toward a side wall 110-160 mm away (its front
+ * corner ranger's hit within guard_side_mm of the body's side and front),
+ * following the other side's wall 230 mm away, its held heading 10 degrees
+ * further toward the near wall (a heading left off by a room's exit): the
+ * yaw command turns away from the near wall at least as fast as the leaving
+ * guard's push. Either side. */
+TEST(a_front_corner_near_a_side_wall_is_steered_off_it)
+{
+    int side, a, c;
+    for (side = FFR_SIDE_LEFT; side <= FFR_SIDE_RIGHT; ++side) {
+        float sgn = side == FFR_SIDE_LEFT ? 1.0f : -1.0f; /* + left */
+        int near_f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
+        int near_r = side == FFR_SIDE_LEFT ? FFR_IR_LR : FFR_IR_RR;
+        int far_f = side == FFR_SIDE_LEFT ? FFR_IR_RF : FFR_IR_LF;
+        int far_r = side == FFR_SIDE_LEFT ? FFR_IR_RR : FFR_IR_LR;
+        for (a = 0; a <= 20; a += 5) {
+            for (c = 110; c <= 160; c += 10) {
+                rig_t r;
+                ffr_config_t cfg;
+                float toward = (float)a * FFR_DEG * sgn; /* the heading's turn toward the near wall */
+                float nx = sgn * ffr_sinf(toward), ny = sgn * ffr_cosf(toward);
+                float g;
+                ffr_config_default(&cfg);
+                rig_init(&r, &cfg);
+                r.st.odo.heading_rad = 0.5f * FFR_PI;
+                r.st.route.heading_ref_rad = r.st.odo.heading_rad + 10.0f * FFR_DEG * sgn;
+                rig_no_walls(&cfg, r.st.ir_mm);
+                r.st.ir_mm[near_f] = reading(&cfg, near_f, nx, ny, (float)c);
+                r.st.ir_mm[near_r] = reading(&cfg, near_r, nx, ny, (float)c);
+                r.st.ir_mm[far_f] = reading(&cfg, far_f, -nx, -ny, 230.0f);
+                r.st.ir_mm[far_r] = reading(&cfg, far_r, -nx, -ny, 230.0f);
+                rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
+                g = ffr_leave_guard(&r.st);
+                CHECK(g * sgn < 0.0f); /* the guard sees the corner's wall: pushes off it */
+                ffr_drive_corridor(&r.st, (uint8_t)(1 - side), 300.0f);
+                CHECK(r.st.cmd_w_rad_s * sgn <= g * sgn + 1e-6f);
+                CHECK(r.st.cmd_v_mm_s > 0.0f);
+            }
+        }
+    }
+}
+
+/* With both walls 230 mm away and parallel, the guard sees nothing and the
+ * corridor driving is the wall following alone (no steering on target). */
+TEST(on_the_corridor_middle_the_corner_guard_does_nothing)
+{
+    int side;
+    for (side = FFR_SIDE_LEFT; side <= FFR_SIDE_RIGHT; ++side) {
+        rig_t r;
+        ffr_config_t cfg;
+        ffr_config_default(&cfg);
+        rig_init(&r, &cfg);
+        r.st.odo.heading_rad = 0.5f * FFR_PI;
+        r.st.route.heading_ref_rad = r.st.odo.heading_rad;
+        rig_no_walls(&cfg, r.st.ir_mm);
+        r.st.ir_mm[FFR_IR_LF] = reading(&cfg, FFR_IR_LF, 0.0f, 1.0f, 230.0f);
+        r.st.ir_mm[FFR_IR_LR] = reading(&cfg, FFR_IR_LR, 0.0f, 1.0f, 230.0f);
+        r.st.ir_mm[FFR_IR_RF] = reading(&cfg, FFR_IR_RF, 0.0f, -1.0f, 230.0f);
+        r.st.ir_mm[FFR_IR_RR] = reading(&cfg, FFR_IR_RR, 0.0f, -1.0f, 230.0f);
+        rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
+        CHECK(ffr_leave_guard(&r.st) == 0.0f);
+        ffr_drive_corridor(&r.st, (uint8_t)side, 300.0f);
+        CHECK_NEAR(r.st.cmd_w_rad_s, 0.0, 1e-3);
+    }
+}
+
+/* The route's last stretch past an opening (route.c, drive_to_goal) holds
+ * the held heading alone; a held heading 5-15 degrees toward a side wall
+ * whose front corner ranger's hit is within the guard band now turns away
+ * from that wall (it turned toward it before). */
+TEST(the_last_stretch_past_an_opening_keeps_a_front_corner_off_a_wall)
+{
+    int side, a;
+    for (side = FFR_SIDE_LEFT; side <= FFR_SIDE_RIGHT; ++side) {
+        float sgn = side == FFR_SIDE_LEFT ? 1.0f : -1.0f;
+        int near_f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
+        for (a = 5; a <= 15; a += 5) {
+            rig_t r;
+            ffr_config_t cfg;
+            ffr_inputs_t in;
+            ffr_config_default(&cfg);
+            rig_init(&r, &cfg);
+            in = r.in;
+            r.st.route.pc = 2; /* the default route's FOLLOW(RIGHT, OPEN_L) */
+            CHECK(cfg.route[2].op == FFR_OP_FOLLOW && cfg.route[2].event == FFR_EV_OPEN_L);
+            r.st.route.phase = 1; /* past the opening's wall end: on to its middle */
+            r.st.route.goal_mm = r.st.odo.dist_mm + 400.0f;
+            r.st.odo.heading_rad = 0.5f * FFR_PI;
+            r.st.route.heading_ref_rad = r.st.odo.heading_rad + (float)a * FFR_DEG * sgn;
+            rig_no_walls(&cfg, r.st.ir_mm);
+            r.st.ir_mm[near_f] = reading(&cfg, near_f, 0.0f, sgn, 140.0f);
+            rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
+            ffr_route_step(&r.st, &in);
+            CHECK(r.st.route.pc == 2);
+            CHECK(r.st.cmd_v_mm_s > 0.0f);
+            CHECK(r.st.cmd_w_rad_s * sgn < 0.0f);
+            CHECK(r.st.cmd_w_rad_s * sgn <= ffr_leave_guard(&r.st) * sgn + 1e-6f);
+        }
+    }
+}
+
 SUITE(wall_follow,
       TEST_REF(a_parallel_wall_on_target_needs_no_steering),
       TEST_REF(turned_toward_a_wall_steers_away),
       TEST_REF(too_far_from_a_right_wall_steers_right_the_rear_ranger_alone_gives_distance),
       TEST_REF(heading_hold_turns_toward_the_reference),
-      TEST_REF(the_held_heading_follows_a_wall_only_within_5_degrees));
+      TEST_REF(the_held_heading_follows_a_wall_only_within_5_degrees),
+      TEST_REF(a_front_corner_near_a_side_wall_is_steered_off_it),
+      TEST_REF(on_the_corridor_middle_the_corner_guard_does_nothing),
+      TEST_REF(the_last_stretch_past_an_opening_keeps_a_front_corner_off_a_wall));

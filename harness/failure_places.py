@@ -1,0 +1,110 @@
+"""Where a sweep's failed missions went wrong: each failed row of an ``ffr sweep --out`` CSV run again,
+and the firmware's route step and state at the first wall contact (else at the mission's end).
+
+    python -m harness.failure_places SWEEP.csv [--skip-seeds N,N,...] [--rows FILE.tsv]
+
+Prints one line per group, most missions first: missions, room, route step (the program counter of
+the route, ``firmware/src/config_default.c``), firmware state, and ``contact`` or the run's detail.
+``--rows`` also writes every failed row (room, seed, candle, step, state, contact, true pose at that
+tick, time, outcome, detail) as tab-separated text. ``--skip-seeds`` leaves out rows of those noise
+seeds (robots known to fail elsewhere). Rows are run as the sweep ran them from the columns room,
+candle_x, candle_y, seed, noise and arena_jitter; only sweeps from the default start (the home
+circle's centre) are supported. Uses the firmware library the harness loads (``FFR_FIRMWARE_LIB``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import sys
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+NEEDED = ("room", "candle_x", "candle_y", "seed", "noise", "success", "outcome", "detail")
+
+
+@dataclass(frozen=True)
+class Place:
+    """One failed mission: where (route step, state) and how it failed."""
+
+    room: str
+    seed: int
+    candle: tuple[float, float]
+    step: int
+    state: str
+    contact: bool
+    pose: tuple[float, float, float]  # true x, y (m), heading (deg) at that tick
+    t_s: float
+    outcome: str
+    detail: str
+
+    def key(self) -> tuple[str, int, str, str]:
+        return (self.room, self.step, self.state, "contact" if self.contact else self.detail)
+
+
+def _failed_rows(path: Path) -> list[dict[str, str]]:
+    with path.open(newline="") as fh:
+        reader = csv.DictReader(fh)
+        missing = [c for c in NEEDED if c not in (reader.fieldnames or [])]
+        if missing:
+            raise ValueError(f"{path}: column {missing[0]!r} missing (an ffr sweep --out CSV is needed)")
+        return [r for r in reader if r["success"].strip().lower() not in ("true", "1")]
+
+
+def place_of(row: dict[str, str]) -> Place:
+    """Run one sweep row again and find where it failed."""
+    from harness.loop import I_CONTACT, I_STATE, I_STEP, run_mission
+    from harness.scenario import make_scenario
+
+    candle = (float(row["candle_x"]), float(row["candle_y"]))
+    scn = make_scenario(candle=candle, seed=int(row["seed"]), noise=row["noise"] or "none",
+                        arena_jitter=float(row.get("arena_jitter") or 0.0))
+    _, tr = run_mission(scn)
+    names = tr.names_of_states()
+    hits = np.nonzero(tr.i[:, I_CONTACT])[0]
+    k = int(hits[0]) if len(hits) else len(tr.i) - 1
+    code = int(tr.i[k, I_STATE])
+    return Place(room=row["room"], seed=int(row["seed"]), candle=candle, step=int(tr.i[k, I_STEP]),
+                 state=names[code] if code < len(names) else str(code), contact=bool(len(hits)),
+                 pose=(float(tr.f[k, 1]), float(tr.f[k, 2]), math.degrees(float(tr.f[k, 3]))),
+                 t_s=float(tr.f[k, 0]), outcome=row["outcome"], detail=row["detail"])
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m harness.failure_places", description=__doc__.split("\n")[0])
+    ap.add_argument("csv", type=Path)
+    ap.add_argument("--skip-seeds", default="")
+    ap.add_argument("--rows", type=Path)
+    args = ap.parse_args(argv)
+    try:
+        skip = {int(s) for s in args.skip_seeds.split(",") if s.strip()}
+    except ValueError:
+        print(f"--skip-seeds: {args.skip_seeds!r} is not a list of integers", file=sys.stderr)
+        return 2
+    try:
+        rows = _failed_rows(args.csv)
+    except (OSError, ValueError) as e:
+        print(str(e) if isinstance(e, ValueError) else f"{args.csv}: {e.strerror}", file=sys.stderr)
+        return 2
+    places = [place_of(r) for r in rows if int(r["seed"]) not in skip]
+    if args.rows:
+        with args.rows.open("w") as fh:
+            for p in places:
+                fh.write("\t".join([p.room, str(p.seed), f"{p.candle[0]},{p.candle[1]}", str(p.step), p.state,
+                                    "C" if p.contact else "-", "{:.3f},{:.3f},{:.0f}".format(*p.pose),
+                                    f"{p.t_s:.1f}", p.outcome, p.detail]) + "\n")
+    print(f"{len(places)} failed missions (of {len(rows)} failed rows; seeds left out: "
+          f"{','.join(map(str, sorted(skip))) or 'none'})")
+    print("missions\troom\tstep\tstate\tcontact or detail")
+    for key, n in Counter(p.key() for p in places).most_common():
+        print(n, *key, sep="\t")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,49 @@
+"""harness.failure_places: a failed sweep row run again, its route step and state where it went wrong."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import pytest
+
+from harness.failure_places import NEEDED, main
+
+ROW = {"room": "1", "candle_x": "1.83", "candle_y": "1.53", "seed": "0", "noise": "none", "success": "False",
+       "outcome": "home", "detail": "", "arena_jitter": "0.0"}
+
+
+def _csv(path: Path, rows: list[dict[str, str]], fields: tuple[str, ...] = (*NEEDED, "arena_jitter")) -> Path:
+    with path.open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(fields), extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    return path
+
+
+def test_a_row_is_run_again_and_placed_at_its_end(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the nominal room-1 mission touches no wall: its place is the end, the route's HOME step, DONE
+    ok = dict(ROW, success="True", seed="1")
+    out = tmp_path / "rows.tsv"
+    assert main([str(_csv(tmp_path / "s.csv", [ROW, ok])), "--rows", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "1 failed missions (of 1 failed rows" in text
+    assert "1\t1\t27\tDONE\t" in text  # default route: step 27 is HOME(LEFT) from room 1
+    fields = out.read_text().strip().split("\t")
+    assert fields[:6] == ["1", "0", "1.83,1.53", "27", "DONE", "-"]
+
+
+def test_skipped_seeds_are_left_out(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main([str(_csv(tmp_path / "s.csv", [ROW])), "--skip-seeds", "0"]) == 0
+    assert "0 failed missions (of 1 failed rows; seeds left out: 0)" in capsys.readouterr().out
+
+
+def test_bad_input_is_one_line_and_status_2(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    bad = _csv(tmp_path / "bad.csv", [ROW], fields=("room", "seed"))
+    assert main([str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "bad.csv" in err and "'candle_x'" in err
+    assert main([str(tmp_path / "none.csv")]) == 2
+    assert "none.csv" in capsys.readouterr().err
+    assert main([str(bad), "--skip-seeds", "x"]) == 2
+    assert "--skip-seeds" in capsys.readouterr().err
