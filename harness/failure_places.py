@@ -7,9 +7,10 @@ Prints one line per group, most missions first: missions, room, route step (the 
 the route, ``firmware/src/config_default.c``), firmware state, and ``contact`` or the run's detail.
 ``--rows`` also writes every failed row (room, seed, candle, step, state, contact, true pose at that
 tick, time, outcome, detail) as tab-separated text. ``--skip-seeds`` leaves out rows of those noise
-seeds (robots known to fail elsewhere). Rows are run as the sweep ran them from the columns room,
-candle_x, candle_y, seed, noise and arena_jitter; only sweeps from the default start (the home
-circle's centre) are supported. Uses the firmware library the harness loads (``FFR_FIRMWARE_LIB``).
+seeds (robots known to fail elsewhere). Each row is run from its own ``replay`` column, the
+``ffr run`` command the sweep wrote for it, read by the CLI's own parser: a row of any sweep (random
+or hallway start, jittered arena, furniture, another arena or robot, ``--set``) runs as it ran. Uses
+the firmware library the harness loads (``FFR_FIRMWARE_LIB``).
 """
 
 from __future__ import annotations
@@ -17,15 +18,17 @@ from __future__ import annotations
 import argparse
 import csv
 import math
+import shlex
 import sys
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
-NEEDED = ("room", "candle_x", "candle_y", "seed", "noise", "success", "outcome", "detail")
+NEEDED = ("room", "candle_x", "candle_y", "seed", "success", "outcome", "detail", "replay")
 
 
 @dataclass(frozen=True)
@@ -56,15 +59,23 @@ def _failed_rows(path: Path) -> list[dict[str, str]]:
         return [r for r in reader if r["success"].strip().lower() not in ("true", "1")]
 
 
+def scenario_of(row: dict[str, str]) -> Any:
+    """The scenario of a sweep row, from its replay command through the CLI's own parser."""
+    from harness.cli import _scenarios, build_parser
+
+    argv = shlex.split(row["replay"])
+    if argv[:2] != ["ffr", "run"]:
+        raise ValueError(f"replay = {row['replay']!r}: expected an 'ffr run ...' command")
+    args = build_parser().parse_args(argv[1:])
+    return _scenarios(args, [args.room])[0]
+
+
 def place_of(row: dict[str, str]) -> Place:
     """Run one sweep row again and find where it failed."""
     from harness.loop import I_CONTACT, I_STATE, I_STEP, run_mission
-    from harness.scenario import make_scenario
 
     candle = (float(row["candle_x"]), float(row["candle_y"]))
-    scn = make_scenario(candle=candle, seed=int(row["seed"]), noise=row["noise"] or "none",
-                        arena_jitter=float(row.get("arena_jitter") or 0.0))
-    _, tr = run_mission(scn)
+    _, tr = run_mission(scenario_of(row))
     names = tr.names_of_states()
     hits = np.nonzero(tr.i[:, I_CONTACT])[0]
     k = int(hits[0]) if len(hits) else len(tr.i) - 1
@@ -91,7 +102,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (OSError, ValueError) as e:
         print(str(e) if isinstance(e, ValueError) else f"{args.csv}: {e.strerror}", file=sys.stderr)
         return 2
-    places = [place_of(r) for r in rows if int(r["seed"]) not in skip]
+    try:
+        places = [place_of(r) for r in rows if int(r["seed"]) not in skip]
+    except ValueError as e:
+        print(f"{args.csv}: {e}", file=sys.stderr)
+        return 2
     if args.rows:
         with args.rows.open("w") as fh:
             for p in places:

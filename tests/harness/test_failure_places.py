@@ -9,11 +9,11 @@ import pytest
 
 from harness.failure_places import NEEDED, main
 
-ROW = {"room": "1", "candle_x": "1.83", "candle_y": "1.53", "seed": "0", "noise": "none", "success": "False",
-       "outcome": "home", "detail": "", "arena_jitter": "0.0"}
+ROW = {"room": "1", "candle_x": "1.83", "candle_y": "1.53", "seed": "0", "success": "False",
+       "outcome": "home", "detail": "", "replay": "ffr run --candle 1.83,1.53 --seed 0"}
 
 
-def _csv(path: Path, rows: list[dict[str, str]], fields: tuple[str, ...] = (*NEEDED, "arena_jitter")) -> Path:
+def _csv(path: Path, rows: list[dict[str, str]], fields: tuple[str, ...] = NEEDED) -> Path:
     with path.open("w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(fields), extrasaction="ignore")
         w.writeheader()
@@ -47,3 +47,29 @@ def test_bad_input_is_one_line_and_status_2(tmp_path: Path, capsys: pytest.Captu
     assert "none.csv" in capsys.readouterr().err
     assert main([str(bad), "--skip-seeds", "x"]) == 2
     assert "--skip-seeds" in capsys.readouterr().err
+
+
+
+def test_a_row_of_any_sweep_is_run_again_as_the_sweep_ran_it() -> None:
+    # a random start, a jittered arena and furniture: the row's scenario is the sweep's own, read
+    # back from the row's replay command
+    from harness.failure_places import scenario_of
+    from harness.scenario import make_scenario
+    from harness.sweep import SweepSpec, build_jobs, run_job
+
+    job = build_jobs(SweepSpec(rooms=(3,), candles="default", seeds=(5,), start="random", arena_jitter=0.05,
+                               furniture=2))[0]
+    row = {k: str(v) for k, v in run_job(job).items()}
+    scn = scenario_of(row)
+    ref = make_scenario(candle=tuple(job["candle"]), seed=5, start="random", arena_jitter=0.05, furniture=2)
+    assert scn.start == ref.start and abs(scn.start[0] - float(row["start_x"])) < 1e-12
+    assert scn.arena.walls == ref.arena.walls and scn.furniture == ref.furniture and len(scn.furniture) == 2
+    assert scn.arena_jitter == 0.05 and scn.candle == ref.candle
+
+
+def test_a_row_whose_replay_is_not_ffr_run_is_one_line_and_status_2(tmp_path: Path,
+                                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    bad = _csv(tmp_path / "bad.csv", [dict(ROW, replay="rm -rf /")])
+    assert main([str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "replay" in err and "rm -rf" in err
