@@ -32,8 +32,9 @@
 #define AVOID_STEP_MM 20.0f
 /* chosen: the corridor is the body's width and this much each side */
 #define AVOID_SIDE_MM 20.0f
-/* chosen: hits this near the flame's line of sight are the candle's base
- * (8 cm across) or beyond it; no piece can stand on that line */
+/* chosen: a marked cell whose centre is this near the flame's line of sight
+ * is the candle's base (8 cm across) or beyond it; no piece can stand on that
+ * line. A mark on the line has its cell's centre within 45 mm of it */
 #define AVOID_CANDLE_LAT_MM 60.0f
 /* the detour's headings: offsets from the flame's of this step, up to this
  * many steps each way (chosen: 35 degrees keeps the flame in the sensors'
@@ -114,9 +115,16 @@ float ffr_obst_free_mm(const ffr_obstacles_t *o, const ffr_config_t *cfg, float 
         for (l = -w; l <= w; l += AVOID_STEP_MM) {
             float px = x_mm + c * ahead - s * l;
             float py = y_mm + s * ahead + c * l;
-            /* how far off the flame's line of sight (from the robot) */
-            float off = -(px - x_mm) * fs + (py - y_mm) * fc;
-            if (ffr_absf(off) < AVOID_CANDLE_LAT_MM || !ffr_obst_at(o, px, py)) {
+            int ix, iy;
+            float off;
+            if (!ffr_obst_at(o, px, py) || !cell_of(o, px, py, &ix, &iy)) {
+                continue;
+            }
+            /* how far the marked cell's centre is off the flame's line of
+             * sight (from the robot): a whole cell is the candle's or not */
+            off = -((float)o->ox_mm + ((float)ix + 0.5f) * OBST_CELL_MM - x_mm) * fs
+                  + ((float)o->oy_mm + ((float)iy + 0.5f) * OBST_CELL_MM - y_mm) * fc;
+            if (ffr_absf(off) < AVOID_CANDLE_LAT_MM) {
                 continue;
             }
             if (lat_mm) {

@@ -98,7 +98,7 @@ enum {
  * the candle and the walls behind it must stay out), and at most this far
  * past the body's front (chosen) */
 #define FLAME_REACH_MM 260.0f
-#define AVOID_SHARE 0.6f
+#define AVOID_SHARE 0.5f
 #define AVOID_LOOK_MM 300.0f
 /* driving to the second scan point, the clearance is checked this far ahead
  * (mm, twice: a tick or two of travel at room speed) */
