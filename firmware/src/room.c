@@ -92,6 +92,10 @@ enum {
 /* the scan turns in place: nothing the rangers saw within the body's corner
  * radius (156 mm) and this margin of the second scan point (chosen) */
 #define DEEPER_CLEAR_MARGIN_MM 35.0f
+/* ... going on brings a mark nearer by more than this (mm, of the 40 mm
+ * looked ahead): not a wall alongside, whose nearest cell only wavers with
+ * the grid's 64 mm cells */
+#define DEEPER_CLOSING_MM 15.0f
 /* the approach looks for obstacles in its corridor this share of the flame's
  * distance told by its strength (FLAME_REACH at FLAME_REACH_MM; chosen: the
  * strength's distance is good to about +-40 % over the flames' sizes, and
@@ -552,7 +556,7 @@ static uint8_t on_deeper(ffr_state_t *st, room_tick_t *t)
     near_here = ffr_obst_nearest_mm(&r->obst, st->odo.x_mm, st->odo.y_mm, need);
     near_ahead = ffr_obst_nearest_mm(&r->obst, ax, ay, need);
     if (t->moved >= DEEPER_MM || st->lines.edge || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm
-        || (near_ahead < need && near_ahead < near_here)) {
+        || (near_ahead < need && near_ahead < near_here - DEEPER_CLOSING_MM)) {
         ffr_stop(st);
         r->scan_x_mm = st->odo.x_mm;
         r->scan_y_mm = st->odo.y_mm;
