@@ -27,6 +27,11 @@
  *              APPROACH (stopped by strength alone) or failed (not out)
  *   VERIFY --stays out verify_ms--> BACK_TURN --> BACK_DRIVE --> LEAVE_TURN;  --back--> EXTINGUISH
  *   LEAVE_TURN --facing out--> LEAVE_LINE --line--> LEAVE_OUT --out--> (left)
+ *   SCAN --a full turn, no flame, but one seen driving in--> DEEPER --> SCAN (once a room)
+ *
+ * Furniture (obstacle_avoid.c): the scan and the approach put the rangers'
+ * hits into a grid; the approach detours around what is in the body's way to
+ * the flame and backs out through the detour's turning points.
  */
 #include "ffr_internal.h"
 
