@@ -301,11 +301,13 @@ typedef struct {
 typedef struct {
     int16_t ox_mm, oy_mm;          /* odometry position of the grid's corner   */
     uint8_t bits[FFR_OBST_CELLS * FFR_OBST_CELLS / 8];
-    int16_t via_x_mm[FFR_OBST_VIA]; /* where the approach's detour turned      */
+    int16_t via_x_mm[FFR_OBST_VIA]; /* where the approach turned (its trail)    */
     int16_t via_y_mm[FFR_OBST_VIA];
     float offset_rad;              /* the detour's offset from the flame now   */
+    float trail_rad;               /* the heading when the last turning point was kept */
     uint8_t n_via;
-    uint8_t reserved[3];
+    uint8_t retrace;               /* backing out: 0 not decided, 1 by the turning points, 2 straight */
+    uint8_t reserved[2];
 } ffr_obstacles_t;
 
 typedef struct {

@@ -264,10 +264,13 @@ float ffr_obst_free_mm(const ffr_obstacles_t *o, const ffr_config_t *cfg, float 
                        float flame_rad, float reach_mm, float *lat_mm);
 /* The heading offset (rad, + left) from the flame's line of sight flame_rad
  * whose corridor is clear for reach_mm (0: the straight one is), else the one
- * clear farthest; *free_mm: how far that is. Where a detour begins or ends,
- * the position is kept (o->via_*) for backing out the way it came. */
+ * clear farthest; *free_mm: how far that is. */
 float ffr_obst_detour(ffr_obstacles_t *o, const ffr_config_t *cfg, const ffr_odometry_t *odo, float flame_rad,
                       float reach_mm, float *free_mm);
+/* The approach's trail, for backing out the way it came: each tick of an
+ * approach (begin: its first), the position is kept (o->via_*, three at
+ * most) where the heading has turned 15 degrees since the last kept. */
+void ffr_obst_trail(ffr_obstacles_t *o, const ffr_odometry_t *odo, int begin);
 /* The nearest marked cell's centre from (x, y), mm; radius_mm if none nearer. */
 float ffr_obst_nearest_mm(const ffr_obstacles_t *o, float x_mm, float y_mm, float radius_mm);
 

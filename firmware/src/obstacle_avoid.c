@@ -44,6 +44,12 @@
 /* chosen: a detour whose best corridor is clear for less than this past the
  * front is no way round (one sample step) */
 #define AVOID_MIN_FREE_MM 20.0f
+/* the approach's trail: a turning point kept where the heading has turned
+ * this much since the last (chosen: a bend the straight way back would cut
+ * by some centimetres over the ~0.5 m of an approach) ... */
+#define TRAIL_BEND_DEG 15.0f
+/* ... and where a new approach begins this far from the last (mm, chosen) */
+#define TRAIL_NEW_MM 50.0f
 
 static int cell_of(const ffr_obstacles_t *o, float x_mm, float y_mm, int *ix, int *iy)
 {
@@ -66,7 +72,39 @@ void ffr_obst_reset(ffr_obstacles_t *o, float cx_mm, float cy_mm)
         o->bits[k] = 0u;
     }
     o->offset_rad = 0.0f;
+    o->trail_rad = 0.0f;
     o->n_via = 0u;
+    o->retrace = 0u;
+}
+
+static void keep_point(ffr_obstacles_t *o, const ffr_odometry_t *odo)
+{
+    /* full: the last one is moved on (the first bends, by the scan point and
+     * the piece passed, are the ones the straight way back would cut) */
+    uint8_t k = o->n_via < FFR_OBST_VIA ? o->n_via : (uint8_t)(FFR_OBST_VIA - 1u);
+    o->via_x_mm[k] = (int16_t)ffr_clampf(odo->x_mm, -32000.0f, 32000.0f);
+    o->via_y_mm[k] = (int16_t)ffr_clampf(odo->y_mm, -32000.0f, 32000.0f);
+    o->n_via = (uint8_t)(k + 1u);
+    o->trail_rad = odo->heading_rad;
+}
+
+void ffr_obst_trail(ffr_obstacles_t *o, const ffr_odometry_t *odo, int begin)
+{
+    if (begin) {
+        /* a new approach (after a scan's turn): it starts here */
+        if (o->n_via > 0u) {
+            float dx = (float)o->via_x_mm[o->n_via - 1u] - odo->x_mm;
+            float dy = (float)o->via_y_mm[o->n_via - 1u] - odo->y_mm;
+            if (dx * dx + dy * dy > TRAIL_NEW_MM * TRAIL_NEW_MM) {
+                keep_point(o, odo);
+            }
+        }
+        o->trail_rad = odo->heading_rad;
+        return;
+    }
+    if (ffr_absf(odo->heading_rad - o->trail_rad) > TRAIL_BEND_DEG * FFR_DEG) {
+        keep_point(o, odo);
+    }
 }
 
 void ffr_obst_mark(ffr_obstacles_t *o, float x_mm, float y_mm)
@@ -167,12 +205,6 @@ float ffr_obst_detour(ffr_obstacles_t *o, const ffr_config_t *cfg, const ffr_odo
         /* no way round from here: the approach's guards decide, as without
          * furniture (they stop for what is about to touch) */
         chosen = 0.0f;
-    }
-    if ((chosen != 0.0f) != (o->offset_rad != 0.0f) && o->n_via < FFR_OBST_VIA) {
-        /* the detour begins or ends here: a point to back out by */
-        o->via_x_mm[o->n_via] = (int16_t)ffr_clampf(odo->x_mm, -32000.0f, 32000.0f);
-        o->via_y_mm[o->n_via] = (int16_t)ffr_clampf(odo->y_mm, -32000.0f, 32000.0f);
-        o->n_via = (uint8_t)(o->n_via + 1u);
     }
     o->offset_rad = chosen;
     if (free_mm) {

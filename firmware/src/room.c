@@ -86,6 +86,11 @@ enum {
 #define BAL_MIN_SUM 1.0f
 /* backing out, the scan point reached within this (mm) */
 #define BACK_AT_SCAN_MM 15.0f
+/* backing out after a detour: a point passed this near counts as reached
+ * (mm), and the tail is first turned toward the next one if it points more
+ * than this far off (degrees; chosen) */
+#define BACK_VIA_PASSED_MM 60.0f
+#define BACK_TURN_FIRST_DEG 30.0f
 /* chosen: a flame seen driving in this far (share) from the dark level to
  * flame_detect, and the scan from there finds none: something in the room
  * hides it (furniture), and a second scan is made deeper in. Half way is
@@ -319,7 +324,11 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
 static uint8_t on_turn_best(ffr_state_t *st, room_tick_t *t)
 {
     (void)t;
-    return turn_to(st, st->room.best_heading_rad) ? RP_APPROACH : RP_STAY;
+    if (turn_to(st, st->room.best_heading_rad)) {
+        ffr_obst_trail(&st->room.obst, &st->odo, 1);
+        return RP_APPROACH;
+    }
+    return RP_STAY;
 }
 
 /* How far past the body's front the approach looks for obstacles: a share
@@ -352,6 +361,7 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
                       : avoid_reach(st, sig);
     float detour = ffr_obst_detour(&r->obst, cfg, &st->odo, flame_dir, reach, &free_mm);
     ffr_obst_record(&r->obst, cfg, &st->odo, &st->ir_geom, st->ir_mm);
+    ffr_obst_trail(&r->obst, &st->odo, 0);
     /* beside a wall with the flame already within the fans' reach: stop
      * here rather than creep on along the wall; a part reading long
      * lets a front corner reach the wall before the guard stops it */
@@ -474,8 +484,8 @@ static uint8_t on_back_turn(ffr_state_t *st, room_tick_t *t)
 static uint8_t on_back_drive(ffr_state_t *st, room_tick_t *t)
 {
     ffr_room_state_t *r = &st->room;
-    /* back the way the approach came: through the points where its detour
-     * turned (last first), then to the scan point */
+    /* back the way the approach came: through the points where it turned
+     * (last first), then to the scan point */
     uint8_t via = r->obst.n_via;
     float tx = via ? (float)r->obst.via_x_mm[via - 1u] : r->scan_x_mm;
     float ty = via ? (float)r->obst.via_y_mm[via - 1u] : r->scan_y_mm;
@@ -484,11 +494,44 @@ static uint8_t on_back_drive(ffr_state_t *st, room_tick_t *t)
     float dist = ffr_sqrtf(dx * dx + dy * dy);
     float behind = -(dx * ffr_cosf(st->odo.heading_rad) + dy * ffr_sinf(st->odo.heading_rad));
     (void)t;
-    if (dist < BACK_AT_SCAN_MM || behind <= 0.0f) {
-        if (via) {
-            r->obst.n_via = (uint8_t)(via - 1u);
+    if (via && r->obst.retrace == 0u) {
+        /* the approach bent on its way here: back the way it came only if
+         * the straight way to the scan point has something the rangers saw
+         * in it (else straight, as ever) */
+        float sx = r->scan_x_mm - st->odo.x_mm, sy = r->scan_y_mm - st->odo.y_mm;
+        float sd = ffr_sqrtf(sx * sx + sy * sy);
+        float dir = ffr_atan2f(sy, sx);
+        float clear = ffr_obst_free_mm(&r->obst, &st->cfg, st->odo.x_mm, st->odo.y_mm, dir, dir + 0.5f * FFR_PI, sd,
+                                       NULL);
+        r->obst.retrace = clear < sd ? 1u : 2u;
+    }
+    if (r->obst.retrace == 2u) {
+        via = 0u;
+        r->obst.n_via = 0u;
+        tx = r->scan_x_mm;
+        ty = r->scan_y_mm;
+        dx = tx - st->odo.x_mm;
+        dy = ty - st->odo.y_mm;
+        dist = ffr_sqrtf(dx * dx + dy * dy);
+        behind = -(dx * ffr_cosf(st->odo.heading_rad) + dy * ffr_sinf(st->odo.heading_rad));
+    }
+    if (r->obst.retrace == 1u) {
+        /* the point to back to may be off to a side: reached only when near,
+         * and the tail turned toward it first */
+        float tail = closest(st->odo.heading_rad, ffr_atan2f(-dy, -dx));
+        if (dist < BACK_AT_SCAN_MM || (behind <= 0.0f && dist < BACK_VIA_PASSED_MM)) {
+            if (via) {
+                r->obst.n_via = (uint8_t)(via - 1u);
+                return RP_STAY;
+            }
+            ffr_stop(st);
+            return RP_LEAVE_TURN;
+        }
+        if (ffr_absf(tail - st->odo.heading_rad) > BACK_TURN_FIRST_DEG * FFR_DEG) {
+            (void)turn_to(st, tail);
             return RP_STAY;
         }
+    } else if (dist < BACK_AT_SCAN_MM || behind <= 0.0f) {
         ffr_stop(st);
         return RP_LEAVE_TURN;
     }

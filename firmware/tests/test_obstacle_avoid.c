@@ -165,7 +165,7 @@ TEST(a_mark_on_the_flames_line_of_sight_is_the_candle)
     }
 }
 
-TEST(the_detour_turns_away_from_a_box_keeps_its_side_and_notes_its_turns)
+TEST(the_detour_turns_away_from_a_box_and_keeps_its_side)
 {
     uint32_t s = 31u;
     int k;
@@ -193,19 +193,57 @@ TEST(the_detour_turns_away_from_a_box_keeps_its_side_and_notes_its_turns)
         CHECK(side > 0.0f ? off < 0.0f : off > 0.0f);
         CHECK(ffr_absf(off) <= 35.0f * FFR_DEG + 1e-5f);
         CHECK(fr > ffr_obst_free_mm(&o, &cfg, 0.0f, 0.0f, h, h, 300.0f, NULL));
-        CHECK(o.n_via == 1u); /* where the detour began */
         /* asked again, it keeps the side it took */
         {
             float again = ffr_obst_detour(&o, &cfg, &odo, h, 300.0f, NULL);
             CHECK(again == 0.0f || (again > 0.0f) == (off > 0.0f));
         }
-        /* past it (the box behind): straight on again, and that turn noted */
+        /* past it (the box behind): straight on again */
         odo.x_mm = c * (ahead + 400.0f);
         odo.y_mm = sn * (ahead + 400.0f);
         CHECK(ffr_obst_detour(&o, &cfg, &odo, h, 300.0f, NULL) == 0.0f);
-        CHECK(o.n_via == 2u);
         /* nothing to look at (reach 0): never a detour */
         CHECK(ffr_obst_detour(&o, &cfg, &odo, h, 0.0f, NULL) == 0.0f);
+    }
+}
+
+TEST(the_trail_keeps_the_bends_of_an_approach)
+{
+    uint32_t s = 53u;
+    int k;
+    for (k = 0; k < 100; ++k) {
+        ffr_obstacles_t o;
+        float h0 = draw(&s, -FFR_PI, FFR_PI);
+        float bend = draw(&s, 16.0f, 60.0f) * FFR_DEG * (k % 2 ? 1.0f : -1.0f);
+        ffr_odometry_t odo = pose(draw(&s, -300.0f, 300.0f), draw(&s, -300.0f, 300.0f), h0);
+        float x0 = odo.x_mm, y0 = odo.y_mm;
+        int i;
+        ffr_obst_reset(&o, 0.0f, 0.0f);
+        ffr_obst_trail(&o, &odo, 1);
+        CHECK(o.n_via == 0u); /* it starts at the scan point: nothing kept */
+        /* straight on, wavering under 15 degrees: nothing kept */
+        for (i = 0; i < 20; ++i) {
+            odo.x_mm += 10.0f * ffr_cosf(h0);
+            odo.y_mm += 10.0f * ffr_sinf(h0);
+            odo.heading_rad = h0 + (i % 2 ? 1.0f : -1.0f) * 14.0f * FFR_DEG;
+            ffr_obst_trail(&o, &odo, 0);
+        }
+        CHECK(o.n_via == 0u);
+        /* a bend of more than 15 degrees: kept where it is */
+        odo.heading_rad = h0 + bend;
+        ffr_obst_trail(&o, &odo, 0);
+        CHECK(o.n_via == 1u);
+        CHECK(ffr_absf((float)o.via_x_mm[0] - odo.x_mm) <= 1.0f && ffr_absf((float)o.via_y_mm[0] - odo.y_mm) <= 1.0f);
+        CHECK(ffr_absf((float)o.via_x_mm[0] - x0) > 100.0f || ffr_absf((float)o.via_y_mm[0] - y0) > 100.0f);
+        /* more bends than room: the first kept, the last always the newest */
+        for (i = 0; i < 5; ++i) {
+            odo.x_mm += 50.0f;
+            odo.heading_rad += 20.0f * FFR_DEG;
+            ffr_obst_trail(&o, &odo, 0);
+        }
+        CHECK(o.n_via == FFR_OBST_VIA);
+        CHECK(ffr_absf((float)o.via_x_mm[FFR_OBST_VIA - 1] - odo.x_mm) <= 1.0f);
+        CHECK(ffr_absf((float)o.via_x_mm[0] - (x0 + 200.0f * ffr_cosf(h0))) <= 1.0f);
     }
 }
 
@@ -230,5 +268,6 @@ SUITE(obstacle_avoid,
       TEST_REF(the_rangers_hits_are_marked_where_they_are_in_odometrys_frame),
       TEST_REF(the_corridor_is_clear_up_to_a_box_in_the_bodys_way),
       TEST_REF(a_mark_on_the_flames_line_of_sight_is_the_candle),
-      TEST_REF(the_detour_turns_away_from_a_box_keeps_its_side_and_notes_its_turns),
+      TEST_REF(the_detour_turns_away_from_a_box_and_keeps_its_side),
+      TEST_REF(the_trail_keeps_the_bends_of_an_approach),
       TEST_REF(a_clear_room_gives_no_detour_and_no_turning_points));
