@@ -48,7 +48,8 @@ void ffr_explore_reset(ffr_explore_t *e)
     e->homes = 0;
     e->bent = 0;
     e->rooms_at_flip = 0;
-    e->reserved[0] = e->reserved[1] = 0;
+    e->wrap_gap = 0;
+    e->reserved = 0;
     e->start_mm = 0.0f;
     e->goal_mm = 0.0f;
     e->edge_mm = EX_NO_EDGE;
@@ -164,18 +165,33 @@ static void follow(ffr_state_t *st)
         return;
     }
     if (e->phase == EX_FOLLOW) {
+        if (e->edge_mm != EX_NO_EDGE && (st->flags & FFR_FLAG_EXTINGUISHED)
+            && st->odo.dist_mm - e->edge_mm > FFR_HOME_CHORD_MM) {
+            /* a line alone crossed on the way home: a doorway ahead, searched
+             * already (or never to be); round, back the way the walk came */
+            e->edge_mm = EX_NO_EDGE;
+            turn(st, 180, EX_FOLLOW);
+            return;
+        }
         if (ffr_opening(&st->open, e->side)) {
             /* on until the origin is in the opening's middle */
             e->goal_mm = st->open.open_at_mm[e->side] + cfg->hallway_half_mm;
+            e->wrap_gap = 0;
+            e->phase = EX_WRAP;
+        } else if (ffr_gap(&st->open, e->side, 0)) {
+            /* an opening open since the leg began (beside the robot when it
+             * turned), seen whole: back to half a hallway before its far edge */
+            e->goal_mm = ffr_gap_middle_mm(&st->open, cfg, e->side);
+            e->wrap_gap = 1;
             e->phase = EX_WRAP;
         } else if (ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
             int deg = ffr_wall_case_turn(ffr_wall_case_sensed(cfg, st->ir_mm, &st->open), e->side);
             if (deg == 0) {
                 deg = -toward(e); /* away from the followed wall */
             }
-            /* a turn toward the followed side is into an opening there: a door
-             * straight ahead after it is probed as one beside */
-            turn(st, deg, deg == toward(e) ? EX_PROBE : EX_FOLLOW);
+            /* a door may stand straight ahead after any corner (a hallway's
+             * end beside a door): probed as one beside */
+            turn(st, deg, EX_PROBE);
             return;
         } else {
             /* steered by the far wall where there is one: the followed wall's
@@ -185,6 +201,9 @@ static void follow(ffr_state_t *st)
         }
     }
     /* EX_WRAP: straight on the held heading to the opening's middle */
+    if (e->wrap_gap) {
+        e->goal_mm = ffr_gap_middle_mm(&st->open, cfg, e->side); /* refined as it nears */
+    }
     {
         float left = e->goal_mm - st->odo.dist_mm;
         if (left <= 0.0f || ffr_front_now(cfg, &st->odo, st->ir_mm) < cfg->front_stop_mm) {
