@@ -178,9 +178,12 @@ static void follow(ffr_state_t *st)
             e->goal_mm = st->open.open_at_mm[e->side] + cfg->hallway_half_mm;
             e->wrap_gap = 0;
             e->phase = EX_WRAP;
-        } else if (ffr_gap(&st->open, e->side, 0)) {
+        } else if (ffr_gap(&st->open, e->side, 0)
+                   && st->open.gap_end_mm[e->side] - e->start_mm > 2.0f * cfg->hallway_half_mm) {
             /* an opening open since the leg began (beside the robot when it
-             * turned), seen whole: back to half a hallway before its far edge */
+             * turned), seen whole: back to half a hallway before its far edge.
+             * Not one whose far edge is within a hallway's width of the
+             * leg's start: that is the door the robot has just come out of */
             e->goal_mm = ffr_gap_middle_mm(&st->open, cfg, e->side);
             e->wrap_gap = 1;
             e->phase = EX_WRAP;
