@@ -371,12 +371,12 @@ typedef struct {
     uint8_t homes;                 /* home circles crossed so far             */
     uint8_t bent;                  /* a turn since the last line edge         */
     uint8_t rooms_at_flip;         /* rooms_searched when the walls last changed */
-    uint8_t wrap_gap;              /* the wrap's goal is a whole opening's (openings.c gap) */
-    uint8_t reserved;
+    uint8_t reserved[2];
     float start_mm;                /* odometry distance where the phase began */
     float goal_mm;                 /* distance goal (wrap, home, back)        */
     float edge_mm;                 /* where the last line edge was crossed (-1: none to pair) */
     float target_rad;              /* the current turn's target               */
+    float home_mm;                 /* where the home circle was last recognised */
 } ffr_explore_t;
 
 struct ffr_state {

@@ -48,12 +48,12 @@ void ffr_explore_reset(ffr_explore_t *e)
     e->homes = 0;
     e->bent = 0;
     e->rooms_at_flip = 0;
-    e->wrap_gap = 0;
-    e->reserved = 0;
+    e->reserved[0] = e->reserved[1] = 0;
     e->start_mm = 0.0f;
     e->goal_mm = 0.0f;
     e->edge_mm = EX_NO_EDGE;
     e->target_rad = 0.0f;
+    e->home_mm = EX_NO_EDGE;
 }
 
 int ffr_explore_is_circle(float chord_mm, float line_sensor_x_mm, float *to_middle_mm)
@@ -129,6 +129,10 @@ static int line_edge(ffr_state_t *st)
     ffr_explore_t *e = &st->explore;
     float to_mid = 0.0f;
     int straight = !e->bent;
+    if (st->odo.dist_mm - e->home_mm < FFR_HOME_CHORD_MM) {
+        /* the circle just recognised, its line met again (a turn on it) */
+        return 1;
+    }
     if (e->edge_mm == EX_NO_EDGE || !ffr_explore_is_circle(st->odo.dist_mm - e->edge_mm, st->cfg.line_sensor_x_mm,
                                                             &to_mid)) {
         e->edge_mm = st->odo.dist_mm;
@@ -137,6 +141,7 @@ static int line_edge(ffr_state_t *st)
     }
     e->edge_mm = EX_NO_EDGE;
     e->bent = 0;
+    e->home_mm = st->odo.dist_mm;
     if (e->homes < 255u) {
         e->homes = (uint8_t)(e->homes + 1u);
     }
@@ -176,16 +181,17 @@ static void follow(ffr_state_t *st)
         if (ffr_opening(&st->open, e->side)) {
             /* on until the origin is in the opening's middle */
             e->goal_mm = st->open.open_at_mm[e->side] + cfg->hallway_half_mm;
-            e->wrap_gap = 0;
             e->phase = EX_WRAP;
         } else if (ffr_gap(&st->open, e->side, 0)
                    && st->open.gap_end_mm[e->side] - e->start_mm > 2.0f * cfg->hallway_half_mm) {
             /* an opening open since the leg began (beside the robot when it
-             * turned), seen whole: back to half a hallway before its far edge.
+             * turned), seen whole: back to half a hallway before its far edge
+             * as first seen (not refined as the route's GAP is: a wall's end
+             * a few cm thick between two openings, a door's jamb and a
+             * hallway beyond, would carry the goal past the door).
              * Not one whose far edge is within a hallway's width of the
              * leg's start: that is the door the robot has just come out of */
             e->goal_mm = ffr_gap_middle_mm(&st->open, cfg, e->side);
-            e->wrap_gap = 1;
             e->phase = EX_WRAP;
         } else if (ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
             int deg = ffr_wall_case_turn(ffr_wall_case_sensed(cfg, st->ir_mm, &st->open), e->side);
@@ -204,9 +210,6 @@ static void follow(ffr_state_t *st)
         }
     }
     /* EX_WRAP: straight on the held heading to the opening's middle */
-    if (e->wrap_gap) {
-        e->goal_mm = ffr_gap_middle_mm(&st->open, cfg, e->side); /* refined as it nears */
-    }
     {
         float left = e->goal_mm - st->odo.dist_mm;
         if (left <= 0.0f || ffr_front_now(cfg, &st->odo, st->ir_mm) < cfg->front_stop_mm) {
@@ -252,7 +255,7 @@ static void probe(ffr_state_t *st, const ffr_inputs_t *in)
     ffr_drive_heading(st, st->route.heading_ref_rad, cfg->room_speed_mm_s);
 }
 
-void ffr_explore_step(ffr_state_t *st, const ffr_inputs_t *in)
+static void explore_step(ffr_state_t *st, const ffr_inputs_t *in)
 {
     const ffr_config_t *cfg = &st->cfg;
     ffr_explore_t *e = &st->explore;
@@ -321,5 +324,17 @@ void ffr_explore_step(ffr_state_t *st, const ffr_inputs_t *in)
     default:
         ffr_stop(st);
         return;
+    }
+}
+
+/* Driving between the rooms, a front corner that comes near a wall its
+ * ranger sees beside the front half (a door's jamb, a wall's end met off the
+ * hallway's middle) is steered off it, as a room's exit is (room_guards.c). */
+void ffr_explore_step(ffr_state_t *st, const ffr_inputs_t *in)
+{
+    explore_step(st, in);
+    if (st->state != FFR_ST_DONE && st->state != FFR_ST_FAILED && st->explore.phase != EX_ROOM
+        && st->explore.phase != EX_TURN && st->cmd_v_mm_s > 0.0f) {
+        st->cmd_w_rad_s += ffr_leave_guard(st);
     }
 }
