@@ -6,8 +6,10 @@
  * walks the hallways by one wall (the right one, or the left one when
  * home_wall_side says so):
  *
- *   FOLLOW the wall; a wall ahead: turn by the wall case (away from it, or
- *          round if a dead end); the wall ends: WRAP on to the opening's
+ *   FOLLOW the wall (steered by the far one where there is one); a wall
+ *          ahead: turn by the wall case (away from it, or round if a dead
+ *          end), then PROBE; the wall ends (or an opening that was open
+ *          since the leg began is seen whole): WRAP on to the opening's
  *          middle, TURN into it, PROBE straight in.
  *   PROBE  a line within EX_PROBE_MM: a doorway: the room task (room.c)
  *          searches the room; out again, TURN the followed side's way (the
@@ -15,7 +17,8 @@
  *   a line crossed, a second one within FFR_HOME_CHORD_MM: the home circle
  *          (its two sides; a doorway's line is alone). With the flame out:
  *          HOME, on to the chord's middle and stop. Before: the walk has
- *          come round the loop it is on, it changes walls (a room whose walls
+ *          come round the loop it is on, and if it searched rooms on the
+ *          way it changes walls (a room whose walls
  *          stand free of the outer wall, an island, is on the other wall's
  *          loop; home is in a hallway between both).
  *   after the flame is out a doorway is not entered again: a line alone at
