@@ -203,7 +203,7 @@ def bench_parts(repeat: int) -> float:
     inputs["enc"] = hw[:, 8:10]
     inputs["start"] = 1
     out = new_outputs()
-    cfg = build_config(scn.robot, scn.firmware, scn.source)
+    cfg = build_config(scn.robot, scn.firmware, scn.source, start_area=scn.start_area)
 
     def firmware() -> None:
         link.reset(cfg)

@@ -31,6 +31,11 @@ from sim_plant.robot import IR_NAMES, RobotParams
 CALIBRATION_NAMES = ("wheel_radius_mm", "track_width_mm", "encoder_ticks_per_rev", "body_front_mm",
                      "body_half_width_mm", "ir_x_mm", "ir_y_mm", "ir_angle_deg", "line_sensor_x_mm")
 RESERVED_CALIBRATION_NAMES = ("ir_k_mv_mm", "ir_offset_mv", "ir_d0_mm")
+# The contract's mode name (docs/contract.md): where the team places the robot, which a team knows on
+# the day (never the start pose). Written when the firmware's config has it: 0 at home, 1 anywhere in a
+# hallway (the arbitrary start mode, ``--start hallway``).
+START_AREA_FIELD = "start_area"
+START_AREA_CODES = {"home": 0, "hallway": 1}
 # Our firmware's structure, not tuning: filled by its own ffr_config_default, never by --set.
 REFERENCE_PRIVATE = frozenset({"route_len", "return_start"})
 
@@ -153,15 +158,19 @@ def apply_overrides(cfg: np.ndarray, overrides: Mapping[str, Any], source: str,
 
 def build_config(robot: RobotParams, overrides: Mapping[str, Any] | None = None,
                  source: str = "firmware", library: str | None = None,
-                 firmware: LibraryLayout | None = None) -> np.ndarray:
-    """The configuration for one mission: the firmware's defaults, the calibration, the overrides.
-    ``firmware``: the loaded library's description (``link.firmware``); else ``library``'s."""
+                 firmware: LibraryLayout | None = None, start_area: str = "home") -> np.ndarray:
+    """The configuration for one mission: the firmware's defaults, the calibration, the start area
+    (the contest's mode, ``START_AREA_FIELD`` if the firmware has it; at home it stays the firmware's
+    default), the overrides. ``firmware``: the loaded library's description (``link.firmware``); else
+    ``library``'s."""
     if firmware is not None:
         cfg = default_config_of(firmware)
     else:
         cfg = default_config(library)
         firmware = firmware_info(library)
     geometry_from_robot(cfg, robot)
+    if start_area != "home" and START_AREA_FIELD in (cfg.dtype.fields or {}):
+        cfg[START_AREA_FIELD] = START_AREA_CODES[start_area]
     if overrides:
         apply_overrides(cfg, overrides, source, firmware)
     return cfg

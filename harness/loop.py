@@ -164,7 +164,8 @@ class Mission:
         candle = Candle(scn.candle[0], scn.candle[1], robot, scn.arena)
         sensors = SensorSuite(scn.arena, robot, candle, scn.noise, rng,
                               ir_sources=scn.ir_source_array())
-        cfg = build_config(robot, scn.firmware, scn.source, firmware=link.firmware)
+        cfg = build_config(robot, scn.firmware, scn.source, firmware=link.firmware,
+                           start_area=scn.start_area)
         self.config = cfg
         if not compiled:
             warm_up(scn, record)  # before the reset: a board's watchdog runs from there

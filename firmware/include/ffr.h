@@ -74,6 +74,10 @@ typedef struct {
 
 /* ffr_config_t.home_wall_side */
 enum { FFR_HOME_WALL_LEFT = 0, FFR_HOME_WALL_RIGHT = 1, FFR_HOME_WALL_ANY = 2, FFR_HOME_AS_PLACED = 3 };
+/* ffr_config_t.start_area: where the team places the robot (the contest's
+ * modes; the team knows which it runs): at home, the route program; anywhere
+ * in a hallway (the arbitrary start mode), the explorer (explore.c) */
+enum { FFR_START_HOME = 0, FFR_START_HALLWAY = 1 };
 #define FFR_ROOMS_MAX 4
 
 /* ------------------------------------------------------------------ */
@@ -157,6 +161,9 @@ struct ffr_config {
 
     ffr_step_t route[FFR_ROUTE_MAX];
     uint8_t return_start[FFR_ROOMS_MAX]; /* route index of the way home from room k+1 */
+    uint8_t start_area;          /* FFR_START_HOME (the route program) or FFR_START_HALLWAY
+                                  * (the arbitrary start mode: explore.c) */
+    uint8_t reserved1[3];
 };
 
 /* ------------------------------------------------------------------ */
@@ -376,6 +383,24 @@ typedef struct {
     float bin_y_mm[FFR_ORIENT_BINS];
 } ffr_home_orient_t;
 
+/* The explorer (explore.c, the arbitrary start mode): one wall followed
+ * through the hallways, every doorway on that side searched, home found by
+ * its circle's two lines. */
+typedef struct {
+    uint8_t phase;                 /* follow, wrap, turn, probe, room, home, back */
+    uint8_t side;                  /* the wall followed: FFR_SIDE_LEFT/RIGHT  */
+    uint8_t after;                 /* the phase after the current turn        */
+    uint8_t homes;                 /* home circles crossed so far             */
+    uint8_t bent;                  /* a turn since the last line edge         */
+    uint8_t rooms_at_flip;         /* rooms_searched when the walls last changed */
+    uint8_t reserved[2];
+    float start_mm;                /* odometry distance where the phase began */
+    float goal_mm;                 /* distance goal (wrap, home, back)        */
+    float edge_mm;                 /* where the last line edge was crossed (-1: none to pair) */
+    float target_rad;              /* the current turn's target               */
+    float home_mm;                 /* where the home circle was last recognised */
+} ffr_explore_t;
+
 struct ffr_state {
     ffr_config_t cfg;
     ffr_odometry_t odo;
@@ -386,6 +411,7 @@ struct ffr_state {
     ffr_wall_cal_t wall_cal;
     ffr_room_state_t room;
     ffr_home_orient_t orient;
+    ffr_explore_t explore;
     float ir_mm[FFR_IR_COUNT];     /* last calibrated ranges (ir_max_mm+1 = none) */
     ffr_ir_geom_t ir_geom;         /* and their hit points                    */
     uint32_t t_ms;

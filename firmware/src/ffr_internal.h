@@ -329,6 +329,22 @@ int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const 
 void ffr_route_begin(ffr_state_t *st, uint8_t pc);
 void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in);
 
+/* explore.c: the arbitrary start mode (cfg->start_area == FFR_START_HALLWAY).
+ * Begin once the robot is square to the walls (home_orient.c), facing open
+ * with the followed wall beside it; then one step a tick until DONE/FAILED. */
+void ffr_explore_reset(ffr_explore_t *e);
+void ffr_explore_begin(ffr_state_t *st);
+void ffr_explore_step(ffr_state_t *st, const ffr_inputs_t *in);
+/* Two line edges chord_mm of travel apart are the home circle's two sides if
+ * the chord is no longer than FFR_HOME_CHORD_MM; then *to_middle_mm is the
+ * origin's travel from the second edge to where the line sensor's chord has
+ * its middle (negative: already past it). */
+#define FFR_HOME_CHORD_MM 400.0f
+int ffr_explore_is_circle(float chord_mm, float line_sensor_x_mm, float *to_middle_mm);
+/* The multiple of 90 degrees nearest to rad (the turns' targets in a frame
+ * square to the walls). */
+float ffr_explore_square(float rad);
+
 /* mission.c */
 void ffr_fail(ffr_state_t *st, uint8_t code);
 

@@ -35,7 +35,8 @@
     S(flame_steer_deg, F32) S(approach_stop_mm, F32) S(guard_side_mm, F32) S(guard_stop_mm, F32)      \
     S(fan_timeout_ms, U32) S(flame_out_confirm_ms, U32) S(verify_ms, U32) S(fan_attempts, U8)         \
     S(scan_dir, U8) S(route_len, U8) S(home_wall_side, U8)                                            \
-    X(route, ffr_step_t, FFR_S_ROUTE_STEP, FFR_ROUTE_MAX) A(return_start, U8, FFR_ROOMS_MAX)
+    X(route, ffr_step_t, FFR_S_ROUTE_STEP, FFR_ROUTE_MAX) A(return_start, U8, FFR_ROOMS_MAX)         \
+    S(start_area, U8) A(reserved1, U8, 3)
 
 /* The compile-time checks: a wrong type code or count in a row above fails the build. */
 #define STEP_CHECK(m, code) FFR_CHECK_ROW(ffr_step_t, m, code);

@@ -34,6 +34,7 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->route.reserved[0] = st->route.reserved[1] = st->route.reserved[2] = st->route.reserved[3] = 0;
     ffr_wall_cal_reset(&st->wall_cal);
     ffr_orient_reset(&st->orient, &st->odo);
+    ffr_explore_reset(&st->explore);
     st->room.phase = 0;
     st->room.room = 0;
     st->room.attempts = 0;
@@ -129,7 +130,11 @@ void ffr_step(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out)
             st->started = 1;
             if (cfg->home_wall_side == FFR_HOME_AS_PLACED) {
                 st->route.heading_ref_rad = st->odo.heading_rad;
-                ffr_route_begin(st, 0);
+                if (cfg->start_area == FFR_START_HALLWAY) {
+                    ffr_explore_begin(st);
+                } else {
+                    ffr_route_begin(st, 0);
+                }
             } else {
                 ffr_orient_begin(st);
             }
@@ -139,10 +144,18 @@ void ffr_step(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out)
         if (ffr_orient_step(st)) {
             /* odometry's frame now has the route's first direction at 0 */
             st->route.heading_ref_rad = 0.0f;
-            ffr_route_begin(st, 0);
+            if (cfg->start_area == FFR_START_HALLWAY) {
+                ffr_explore_begin(st);
+            } else {
+                ffr_route_begin(st, 0);
+            }
         }
     } else if (st->started && st->state != FFR_ST_DONE && st->state != FFR_ST_FAILED) {
-        ffr_route_step(st, in);
+        if (cfg->start_area == FFR_START_HALLWAY) {
+            ffr_explore_step(st, in);
+        } else {
+            ffr_route_step(st, in);
+        }
     }
 
     out->seq = in->seq;
@@ -157,13 +170,17 @@ void ffr_step(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out)
     }
     out->fan = st->fan;
     out->state = st->state;
-    out->room = (st->route.pc < FFR_ROUTE_MAX && cfg->route[st->route.pc].op == FFR_OP_ROOM)
-                    ? cfg->route[st->route.pc].arg
-                    : 0u;
+    if (cfg->start_area == FFR_START_HALLWAY) {
+        out->room = (st->state >= FFR_ST_ENTER && st->state <= FFR_ST_EXIT) ? st->room.room : 0u;
+    } else {
+        out->room = (st->route.pc < FFR_ROUTE_MAX && cfg->route[st->route.pc].op == FFR_OP_ROOM)
+                        ? cfg->route[st->route.pc].arg
+                        : 0u;
+    }
     out->rooms_searched = st->rooms_searched;
     out->line_count = st->lines.count;
     out->flags = st->flags;
-    out->step = st->route.pc;
+    out->step = cfg->start_area == FFR_START_HALLWAY ? st->explore.phase : st->route.pc;
     out->fail_code = st->fail_code;
     out->odo_x_mm = clamp_i16(st->odo.x_mm);
     out->odo_y_mm = clamp_i16(st->odo.y_mm);

@@ -23,7 +23,7 @@ def test_library_layout_matches() -> None:
     _, layout = load_library(str(DEFAULT_LIB))
     check_layout(layout, "lib")
     assert layout.sizes[S_INPUTS] == INPUTS_DTYPE.itemsize == 32
-    assert layout.sizes[S_CONFIG] == layout.config_dtype.itemsize == 648
+    assert layout.sizes[S_CONFIG] == layout.config_dtype.itemsize == 652
     assert OUTPUTS_DTYPE.itemsize == 24
     assert layout.version >> 16 == 2
 

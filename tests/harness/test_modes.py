@@ -114,3 +114,27 @@ def test_a_sweep_in_both_modes_records_them_and_its_replays_reproduce(tmp_path, 
         assert d["outcome"] == r["outcome"] and d["modes"] == ["arbitrary_start", "furniture"]
         assert [round(v, 6) for v in d["start_pose"][:2]] == [round(float(r["start_x"]), 4),
                                                               round(float(r["start_y"]), 4)]
+
+
+def test_the_firmware_is_told_the_start_area_not_the_pose() -> None:
+    """The mode (which a team knows on the day) goes into the contract's start_area config field;
+    at home the configuration stays byte for byte the firmware's default."""
+    from harness.firmware_config import START_AREA_FIELD, build_config
+
+    robot = make_scenario(room=1).robot
+    home = build_config(robot)
+    assert int(home[START_AREA_FIELD]) == 0
+    assert build_config(robot, start_area="home").tobytes() == home.tobytes()
+    hall = build_config(robot, start_area="hallway")
+    assert int(hall[START_AREA_FIELD]) == 1
+    # only that field differs: no pose, no map
+    diff = [n for n in home.dtype.names or () if not np.array_equal(home[n], hall[n])]
+    assert diff == [START_AREA_FIELD]
+
+
+def test_a_hallway_start_reaches_home_with_the_flame_out() -> None:
+    """The explorer (firmware/src/explore.c) from a hallway pose, the flame in room 4: found, put out,
+    home found by its circle's two lines (a start the route program from home did not finish)."""
+    scn = make_scenario(room=4, seed=0, start="hallway")
+    res, _ = run_mission(scn, record=False)
+    assert res.outcome == "home" and res.wall_contacts == 0
