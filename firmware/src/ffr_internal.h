@@ -295,7 +295,8 @@ int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const 
 /* the same, the rangers in `folded` (bit i) that read within the GP2D12's
  * fold-back span (ir_min_mm .. FFR_FOLD_MAX_MM) taken as at the bottom of
  * their span (the wall may be 3-5.5 cm off the ranger, read as 10-18.5 cm);
- * no line through two rangers both in `not_both`, nor through one in `not_any` */
+ * no line through two rangers both in `not_both`, nor through one in
+ * `not_any` unless the other reads at its span's bottom */
 #define FFR_FOLD_MAX_MM 160.0f
 int ffr_orient_clearance_fold(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
                               uint8_t folded, uint8_t not_both, uint8_t not_any, float *dist_mm, float *nx,

@@ -69,7 +69,7 @@
 #define PROBE_GROW_MM 8.0f        /* a reading grown this much on a move away: no fold-back */
 #define PROBE_MM 15.0f            /* the probe for fold-back: this far, straight (chosen) */
 #define PROBE_SPEED_MM_S 40.0f    /* and this slowly (chosen: a reading or two per mm)   */
-#define PROBE_TELL_MM 4.0f        /* a reading changed this much on the probe tells its way */
+#define PROBE_TELL_MM 8.0f        /* a reading changed this much on the probe tells its way */
 
 /* a shift to stand at wall_target_mm at most this far across the route's
  * first direction (and at most SHIFT_TOL_MM along it) is not made; 0 (the
@@ -404,9 +404,10 @@ int ffr_orient_clearance_fold(const ffr_config_t *cfg, const ffr_ir_geom_t *g, c
     for (k = 0; k < 6; ++k) {
         int a = pairs[k][0], b = pairs[k][1];
         float ax, ay, ex, ey, len, t, fx, fy, d;
-        if (!ok[a] || !ok[b] || ((not_both >> a) & 1 && (not_both >> b) & 1) || (not_any >> a) & 1 ||
-            (not_any >> b) & 1) {
-            continue; /* points that may be folded back are no line */
+        if (!ok[a] || !ok[b] || ((not_both >> a) & 1 && (not_both >> b) & 1) ||
+            ((not_any >> a) & 1 && ir_mm[b] > cfg->ir_min_mm + 0.5f) ||
+            ((not_any >> b) & 1 && ir_mm[a] > cfg->ir_min_mm + 0.5f)) {
+            continue; /* points that may be folded back are no line (but with one surely near, at its span's bottom) */
         }
         ax = hx[a];
         ay = hy[a];
@@ -550,8 +551,9 @@ int ffr_orient_probe_back(const ffr_ir_geom_t *g, uint8_t suspects)
 /* The probe: a short slow straight move, watching the suspect rangers (a
  * reading in the fold-back span): a wall that far comes nearer as the robot
  * moves toward it, one folded back reads farther (and the other way round
- * moving away). It stops as soon as a ranger it moves toward reads folded
- * back. */
+ * moving away): over 15 mm a wall as read changes by about 10 mm, one
+ * folded back by 3-4 times more the other way. It stops early only when a
+ * ranger it moves toward reads folded back. */
 static int escape_free(const ffr_state_t *st);
 
 static void probe_step(ffr_state_t *st)
@@ -567,7 +569,7 @@ static void probe_step(ffr_state_t *st)
             ahead = (uint8_t)(ahead | (1 << i));
         }
     }
-    if (left > 0.0f && !(folded & ahead) && (genuine | folded) != o->probed && escape_free(st)) {
+    if (left > 0.0f && !(folded & ahead) && escape_free(st)) {
         float v = ffr_stopping_speed(left, PROBE_SPEED_MM_S);
         st->cmd_v_mm_s = o->reverse ? -v : v;
         return;
@@ -603,7 +605,7 @@ static int clear_step(ffr_state_t *st)
      * it); two the probe could not tell (a wall along the move) may be one
      * wall's */
     if (ffr_orient_clearance_fold(cfg, &st->ir_geom, st->ir_mm, 0u, o->probe_done ? 0u : suspects,
-                                  (uint8_t)(suspects & o->folded), &d2, &nx2, &ny2) &&
+                                  (uint8_t)(o->probe_done ? suspects & o->folded : suspects), &d2, &nx2, &ny2) &&
         d2 < need) {
         /* a wall near as read: away from it */
         d = d2;
