@@ -562,6 +562,19 @@ static void probe_step(ffr_state_t *st)
     uint8_t genuine = 0u, folded = 0u, ahead = 0u;
     float left = o->goal_mm - st->odo.dist_mm;
     int i;
+    if (o->leg == 4u) {
+        /* nothing folded back: back to where it stood (the sweep from there
+         * sees what it would have seen without the probe) */
+        if (left > 0.0f && escape_free(st)) {
+            float v = ffr_stopping_speed(left, PROBE_SPEED_MM_S);
+            st->cmd_v_mm_s = o->reverse ? -v : v;
+            return;
+        }
+        ffr_stop(st);
+        o->leg = 0u;
+        o->phase = PH_CLEAR;
+        return;
+    }
     ffr_orient_probe_tell(&st->cfg, &st->ir_geom, o->reverse & 1u, o->probed, o->probe_mm, st->ir_mm, &genuine,
                           &folded);
     for (i = 0; i < FFR_IR_COUNT; ++i) {
@@ -581,6 +594,12 @@ static void probe_step(ffr_state_t *st)
     o->folded = folded;
     o->probed = 0u;
     o->phase = PH_CLEAR;
+    if (folded == 0u) {
+        o->leg = 4u;
+        o->reverse ^= 1u;
+        o->goal_mm = st->odo.dist_mm + (PROBE_MM - left);
+        o->phase = PH_PROBE;
+    }
 }
 
 static int clear_step(ffr_state_t *st)
