@@ -298,12 +298,18 @@ int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const 
  * no line through two rangers both in `not_both`, nor through one in
  * `not_any` unless the other reads at its span's bottom */
 #define FFR_FOLD_MAX_MM 160.0f
+/* the fold-back rules at the start built in: readings up to this many mm
+ * are suspects (FFR_FOLD_MAX_MM when on); 0, the default: off, the
+ * orientation as before (docs/firmware.md: the stress sweep lost missions) */
+#ifndef FFR_HOME_FOLD_MM
+#define FFR_HOME_FOLD_MM 0.0f
+#endif
 int ffr_orient_clearance_fold(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
                               uint8_t folded, uint8_t not_both, uint8_t not_any, float *dist_mm, float *nx,
                               float *ny);
-/* the rangers (bit i) whose reading lies in the fold-back span: it may be a
- * wall far off or one nearly touching */
-uint8_t ffr_orient_fold_suspects(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT]);
+/* the rangers (bit i) whose reading lies in the fold-back span (above
+ * ir_min_mm, up to max_mm): it may be a wall far off or one nearly touching */
+uint8_t ffr_orient_fold_suspects(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float max_mm);
 /* of the rangers `probed` (a move went away from each's wall since it read
  * before_mm), those whose reading grew: their walls are as far as read */
 /* what a short straight move (backward or not) told of the suspect rangers

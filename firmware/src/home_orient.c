@@ -347,12 +347,12 @@ float ffr_orient_turn_radius_mm(const ffr_config_t *cfg)
     return ffr_sqrtf(cfg->body_front_mm * cfg->body_front_mm + cfg->body_half_width_mm * cfg->body_half_width_mm);
 }
 
-uint8_t ffr_orient_fold_suspects(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT])
+uint8_t ffr_orient_fold_suspects(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float max_mm)
 {
     uint8_t m = 0u;
     int i;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
-        if (ir_mm[i] > cfg->ir_min_mm + 0.5f && ir_mm[i] <= FFR_FOLD_MAX_MM) {
+        if (ir_mm[i] > cfg->ir_min_mm + 0.5f && ir_mm[i] <= max_mm) {
             m = (uint8_t)(m | (1 << i));
         }
     }
@@ -612,7 +612,7 @@ static int clear_step(ffr_state_t *st)
     int i;
     o->trusted = (uint8_t)(o->trusted | ffr_orient_probe_trust(cfg, o->probed, o->probe_mm, st->ir_mm));
     o->probed = 0u;
-    suspects = (uint8_t)(ffr_orient_fold_suspects(cfg, st->ir_mm) & ~o->trusted);
+    suspects = (uint8_t)(ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_HOME_FOLD_MM) & ~o->trusted);
     if (o->probe_done) {
         suspects &= o->folded; /* after the probe: only what it saw folded back */
     }

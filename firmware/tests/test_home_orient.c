@@ -486,13 +486,13 @@ TEST(a_reading_that_may_be_folded_back_counts_as_near)
     ffr_config_default(&cfg);
     /* across the fold-back span and beyond: which readings are suspects */
     rig_no_walls(&cfg, ir);
-    CHECK(ffr_orient_fold_suspects(&cfg, ir) == 0u);
+    CHECK(ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM) == 0u);
     ir[FFR_IR_RR] = cfg.ir_min_mm;
-    CHECK(ffr_orient_fold_suspects(&cfg, ir) == 0u); /* the bottom: near anyway */
+    CHECK(ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM) == 0u); /* the bottom: near anyway */
     ir[FFR_IR_RR] = 0.5f * (cfg.ir_min_mm + FFR_FOLD_MAX_MM);
-    CHECK(ffr_orient_fold_suspects(&cfg, ir) == (1 << FFR_IR_RR));
+    CHECK(ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM) == (1 << FFR_IR_RR));
     ir[FFR_IR_RR] = FFR_FOLD_MAX_MM + 1.0f;
-    CHECK(ffr_orient_fold_suspects(&cfg, ir) == 0u);
+    CHECK(ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM) == 0u);
     /* a wall square behind the body, from nearly touching to clear: the
      * rear rangers read it folded back; taken as folded it is never farther
      * than the turning radius, as read it may be well clear. Readings above
@@ -503,7 +503,7 @@ TEST(a_reading_that_may_be_folded_back_counts_as_near)
         uint8_t sus;
         w.ahead_x = 100.0f + gap; /* the rear face is 100 mm behind the axle: facing away from the wall */
         readings_folded(&cfg, &w, 0.0f, 0.0f, PI_F, ir);
-        sus = ffr_orient_fold_suspects(&cfg, ir);
+        sus = ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM);
         rig_geom(&g, &cfg, ir);
         if (ir[FFR_IR_LR] > FFR_FOLD_MAX_MM && ir[FFR_IR_LR] < 200.0f) {
             CHECK(sus == 0u); /* folded back beyond the span taken: not handled */
@@ -524,9 +524,9 @@ TEST(a_reading_that_may_be_folded_back_counts_as_near)
     /* the centre ranger folded back alone: the probe goes backward */
     rig_no_walls(&cfg, ir);
     ir[FFR_IR_CF] = 150.0f;
-    CHECK(ffr_orient_probe_back(rig_geom(&g, &cfg, ir), ffr_orient_fold_suspects(&cfg, ir)) == 1);
+    CHECK(ffr_orient_probe_back(rig_geom(&g, &cfg, ir), ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM)) == 1);
     ir[FFR_IR_LR] = 150.0f; /* and a rear one too: forward */
-    CHECK(ffr_orient_probe_back(rig_geom(&g, &cfg, ir), ffr_orient_fold_suspects(&cfg, ir)) == 0);
+    CHECK(ffr_orient_probe_back(rig_geom(&g, &cfg, ir), ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM)) == 0);
 }
 
 TEST(a_short_move_tells_folded_back_from_far)
@@ -545,7 +545,7 @@ TEST(a_short_move_tells_folded_back_from_far)
         uint8_t sus, genuine = 0u, folded = 0u, back = 0u;
         w.ahead_x = 100.0f + gap;
         readings_folded(&cfg, &w, 0.0f, 0.0f, PI_F, before);
-        sus = ffr_orient_fold_suspects(&cfg, before);
+        sus = ffr_orient_fold_suspects(&cfg, before, FFR_FOLD_MAX_MM);
         readings_folded(&cfg, &w, -15.0f, 0.0f, PI_F, after); /* facing -x: forward is -x */
         ffr_orient_probe_tell(&cfg, &g, 0, sus, before, after, &genuine, &folded);
         CHECK((genuine & folded) == 0u);
@@ -578,7 +578,7 @@ TEST(a_short_move_tells_folded_back_from_far)
         after[FFR_IR_CF] = 140.0f;
         before[FFR_IR_LF] = 130.0f;
         after[FFR_IR_LF] = 150.0f;
-        ffr_orient_probe_tell(&cfg, &g, 0, ffr_orient_fold_suspects(&cfg, before), before, after, &genuine, &folded);
+        ffr_orient_probe_tell(&cfg, &g, 0, ffr_orient_fold_suspects(&cfg, before, FFR_FOLD_MAX_MM), before, after, &genuine, &folded);
         CHECK(genuine == (1 << FFR_IR_CF));
         CHECK(folded == (1 << FFR_IR_LF));
     }
@@ -593,6 +593,12 @@ TEST(backed_up_to_a_wall_read_folded_back)
     ffr_config_t cfg;
     float gap, th;
     ffr_config_default(&cfg);
+    if (FFR_HOME_FOLD_MM <= 0.0f) {
+        /* built without the fold-back rules (the default): not exercised
+         * here; `make firmware-test` with -DFFR_HOME_FOLD_MM=160.0f runs it */
+        CHECK(FFR_HOME_FOLD_MM == 0.0f);
+        return;
+    }
     for (gap = 8.0f; gap <= 40.0f; gap += 4.0f) { /* nearer: read above FFR_FOLD_MAX_MM */
         for (th = PI_F - 40.0f * FFR_DEG; th <= PI_F + 40.1f * FFR_DEG; th += 10.0f * FFR_DEG) {
             /* a hallway 460 mm wide along x, closed at x = ahead_x; the robot's rear toward it */
