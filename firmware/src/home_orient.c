@@ -36,6 +36,12 @@
  * along it, for a wall beside. During the sweep, a wall's line seen within
  * the radius (it may reach on into a blind sector between the rangers)
  * stops the sweep for the same move, and the sweep starts again.
+ *
+ * Built with FFR_HOME_FOLD_MM > 0 (default 0: off), a reading up to that
+ * many mm may be a ranger folded back (a wall 3-5.5 cm off reads 10-18.5
+ * cm): if only such readings put a wall within the radius, a 15 mm probe
+ * (phase PROBE) tells folded from far before any turn (docs/firmware.md,
+ * "A ranger folded back at the start").
  */
 #include "ffr_internal.h"
 
