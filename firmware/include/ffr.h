@@ -367,6 +367,10 @@ typedef struct {
     uint8_t reverse;               /* the shift (or escape leg) is driven backwards */
     uint8_t escapes;               /* moves made to get room to turn in place */
     uint8_t leg;                   /* the escape's leg: 0 straight, 1-3 the S and the way back */
+    uint8_t trusted;               /* rangers (bit i) whose short reading grew as the robot moved away: no fold-back */
+    uint8_t probed;                /* rangers the last escape moved away from, whose reading it watches */
+    uint8_t probe_done;            /* the probe for fold-back made since the robot last looked afresh */
+    uint8_t folded;                /* rangers (bit i) the probe saw folded back */
     uint8_t reserved[3];
     float leg_mm;                  /* the escape's arc legs' length           */
     float near_mm;                 /* nearest wall line seen in the sweep, from where it stands */
@@ -381,6 +385,7 @@ typedef struct {
     uint16_t bin_mm[FFR_ORIENT_BINS]; /* nearest hit from the sweep's centre per bin (0xFFFF none) */
     float bin_x_mm[FFR_ORIENT_BINS];  /* and where it is, from the sweep's centre */
     float bin_y_mm[FFR_ORIENT_BINS];
+    float probe_mm[FFR_IR_COUNT];  /* the probed rangers' readings when the last escape began */
 } ffr_home_orient_t;
 
 /* The explorer (explore.c, the arbitrary start mode): one wall followed

@@ -324,6 +324,38 @@ float ffr_orient_turn_radius_mm(const ffr_config_t *cfg);
  * hits, and the line through two rangers' hits on one wall) */
 int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
                          float *dist_mm, float *nx, float *ny);
+/* the same, the rangers in `folded` (bit i) that read within the GP2D12's
+ * fold-back span (ir_min_mm .. FFR_FOLD_MAX_MM) taken as at the bottom of
+ * their span (the wall may be 3-5.5 cm off the ranger, read as 10-18.5 cm);
+ * no line through two rangers both in `not_both`, nor through one in
+ * `not_any` unless the other reads at its span's bottom */
+#define FFR_FOLD_MAX_MM 160.0f
+/* the fold-back rules at the start built in: readings up to this many mm
+ * are suspects (FFR_FOLD_MAX_MM when on); 0, the default: off, the
+ * orientation as before (docs/firmware.md: the stress sweep lost missions) */
+#ifndef FFR_HOME_FOLD_MM
+#define FFR_HOME_FOLD_MM 0.0f
+#endif
+int ffr_orient_clearance_fold(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
+                              uint8_t folded, uint8_t not_both, uint8_t not_any, float *dist_mm, float *nx,
+                              float *ny);
+/* the rangers (bit i) whose reading lies in the fold-back span (above
+ * ir_min_mm, up to max_mm): it may be a wall far off or one nearly touching */
+uint8_t ffr_orient_fold_suspects(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float max_mm);
+/* of the rangers `probed` (a move went away from each's wall since it read
+ * before_mm), those whose reading grew: their walls are as far as read */
+/* what a short straight move (backward or not) told of the suspect rangers
+ * (bit i) that read before_mm before it and ir_mm now: a wall as far as read
+ * (genuine) or folded back (folded); rangers looking across the move tell
+ * nothing */
+void ffr_orient_probe_tell(const ffr_config_t *cfg, const ffr_ir_geom_t *g, int backward, uint8_t suspects,
+                           const float before_mm[FFR_IR_COUNT], const float ir_mm[FFR_IR_COUNT], uint8_t *genuine,
+                           uint8_t *folded);
+/* the probe's way for these suspects: 1 backward (only the front may be
+ * near), 0 forward */
+int ffr_orient_probe_back(const ffr_ir_geom_t *g, uint8_t suspects);
+uint8_t ffr_orient_probe_trust(const ffr_config_t *cfg, uint8_t probed, const float before_mm[FFR_IR_COUNT],
+                               const float ir_mm[FFR_IR_COUNT]);
 
 /* route.c: the route program interpreter. */
 void ffr_route_begin(ffr_state_t *st, uint8_t pc);

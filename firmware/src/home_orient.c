@@ -36,6 +36,12 @@
  * along it, for a wall beside. During the sweep, a wall's line seen within
  * the radius (it may reach on into a blind sector between the rangers)
  * stops the sweep for the same move, and the sweep starts again.
+ *
+ * Built with FFR_HOME_FOLD_MM > 0 (default 0: off), a reading up to that
+ * many mm may be a ranger folded back (a wall 3-5.5 cm off reads 10-18.5
+ * cm): if only such readings put a wall within the radius, a 15 mm probe
+ * (phase PROBE) tells folded from far before any turn (docs/firmware.md,
+ * "A ranger folded back at the start").
  */
 #include "ffr_internal.h"
 
@@ -66,6 +72,10 @@
 #define ARC_BAND_MM 30.0f         /* an arc's path: the half width plus this       */
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
 #define ESCAPE_SPEED_MM_S 120.0f  /* chosen: slow, so a wall unseen costs no bump  */
+#define PROBE_GROW_MM 8.0f        /* a reading grown this much on a move away: no fold-back */
+#define PROBE_MM 15.0f            /* the probe for fold-back: this far, straight (chosen) */
+#define PROBE_SPEED_MM_S 40.0f    /* and this slowly (chosen: a reading or two per mm)   */
+#define PROBE_TELL_MM 8.0f        /* a reading changed this much on the probe tells its way */
 
 /* a shift to stand at wall_target_mm at most this far across the route's
  * first direction (and at most SHIFT_TOL_MM along it) is not made; 0 (the
@@ -77,7 +87,7 @@
 #endif
 
 enum { PH_SWEEP = 0, PH_CENTRE = 1, PH_SHIFT_TURN = 2, PH_SHIFT_DRIVE = 3, PH_AIM = 4, PH_TURN = 5, PH_DONE = 6,
-       PH_CLEAR = 7, PH_ESCAPE = 8 };
+       PH_CLEAR = 7, PH_ESCAPE = 8, PH_PROBE = 9 };
 
 static const float k_bin_rad = 2.0f * FFR_PI / (float)FFR_ORIENT_BINS;
 
@@ -88,6 +98,10 @@ void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
     o->reverse = 0u;
     o->escapes = 0u;
     o->leg = 0u;
+    o->trusted = 0u;
+    o->probed = 0u;
+    o->probe_done = 0u;
+    o->folded = 0u;
     o->reserved[0] = o->reserved[1] = o->reserved[2] = 0u;
     o->leg_mm = 0.0f;
     o->near_mm = 65535.0f;
@@ -103,6 +117,7 @@ void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
         o->anchor_ok[i] = 0u;
         o->anchor_x_mm[i] = 0.0f;
         o->anchor_y_mm[i] = 0.0f;
+        o->probe_mm[i] = 0.0f;
     }
     o->c4 = 0.0f;
     o->s4 = 0.0f;
@@ -338,8 +353,27 @@ float ffr_orient_turn_radius_mm(const ffr_config_t *cfg)
     return ffr_sqrtf(cfg->body_front_mm * cfg->body_front_mm + cfg->body_half_width_mm * cfg->body_half_width_mm);
 }
 
+uint8_t ffr_orient_fold_suspects(const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float max_mm)
+{
+    uint8_t m = 0u;
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if (ir_mm[i] > cfg->ir_min_mm + 0.5f && ir_mm[i] <= max_mm) {
+            m = (uint8_t)(m | (1 << i));
+        }
+    }
+    return m;
+}
+
 int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
                          float *dist_mm, float *nx, float *ny)
+{
+    return ffr_orient_clearance_fold(cfg, g, ir_mm, 0u, 0u, 0u, dist_mm, nx, ny);
+}
+
+int ffr_orient_clearance_fold(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
+                              uint8_t folded, uint8_t not_both, uint8_t not_any, float *dist_mm, float *nx,
+                              float *ny)
 {
     /* pairs of rangers that see one wall: a side's two, the front's three, the rear's two */
     static const uint8_t pairs[6][2] = {{FFR_IR_LF, FFR_IR_LR}, {FFR_IR_RF, FFR_IR_RR}, {FFR_IR_CF, FFR_IR_LF},
@@ -356,9 +390,10 @@ int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const 
         if (!ok[i]) {
             continue;
         }
-        if (ir_mm[i] <= cfg->ir_min_mm + 0.5f) {
-            /* at the bottom of the ranger's span: the wall is anywhere up to
-             * ir_min_mm off the ranger; half of it */
+        if (ir_mm[i] <= cfg->ir_min_mm + 0.5f || ((folded >> i) & 1 && ir_mm[i] <= FFR_FOLD_MAX_MM)) {
+            /* at the bottom of the ranger's span (or maybe folded back from
+             * below it): the wall is anywhere up to ir_min_mm off the
+             * ranger; half of it */
             x = cfg->ir_x_mm[i] + 0.5f * cfg->ir_min_mm * g->beam_cos[i];
             y = cfg->ir_y_mm[i] + 0.5f * cfg->ir_min_mm * g->beam_sin[i];
         }
@@ -375,8 +410,10 @@ int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const 
     for (k = 0; k < 6; ++k) {
         int a = pairs[k][0], b = pairs[k][1];
         float ax, ay, ex, ey, len, t, fx, fy, d;
-        if (!ok[a] || !ok[b]) {
-            continue;
+        if (!ok[a] || !ok[b] || ((not_both >> a) & 1 && (not_both >> b) & 1) ||
+            ((not_any >> a) & 1 && ir_mm[b] > cfg->ir_min_mm + 0.5f) ||
+            ((not_any >> b) & 1 && ir_mm[a] > cfg->ir_min_mm + 0.5f)) {
+            continue; /* points that may be folded back are no line (but with one surely near, at its span's bottom) */
         }
         ax = hx[a];
         ay = hy[a];
@@ -451,17 +488,186 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
     o->phase = PH_ESCAPE;
 }
 
+/* Fold-back: a GP2D12 closer to a wall than its span's bottom reads far
+ * again (3-5.5 cm reads as 10-18.5 cm), so a reading in that span may be a
+ * wall nearly touching the body. Such a reading counts as a near wall (the
+ * bottom of the span, as a reading of ir_min_mm) until a move away from it
+ * has made it grow, as a wall that far would (folded back, it shrinks or
+ * drops to the bottom instead). */
+uint8_t ffr_orient_probe_trust(const ffr_config_t *cfg, uint8_t probed, const float before_mm[FFR_IR_COUNT],
+                               const float ir_mm[FFR_IR_COUNT])
+{
+    uint8_t t = 0u;
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if ((probed >> i) & 1 && ffr_ir_valid(cfg, ir_mm[i]) && ir_mm[i] > before_mm[i] + PROBE_GROW_MM) {
+            t = (uint8_t)(t | (1 << i));
+        }
+    }
+    return t;
+}
+
+void ffr_orient_probe_tell(const ffr_config_t *cfg, const ffr_ir_geom_t *g, int backward, uint8_t suspects,
+                           const float before_mm[FFR_IR_COUNT], const float ir_mm[FFR_IR_COUNT], uint8_t *genuine,
+                           uint8_t *folded)
+{
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        /* +1: the move goes toward this ranger's wall, -1: away from it */
+        float toward = (backward ? -1.0f : 1.0f) * g->beam_cos[i];
+        float delta;
+        if (!((suspects >> i) & 1) || ffr_absf(toward) < 0.3f || !ffr_ir_valid(cfg, ir_mm[i])) {
+            continue;
+        }
+        delta = (ir_mm[i] - before_mm[i]) * (toward > 0.0f ? -1.0f : 1.0f); /* > 0: as a wall that far */
+        if (ir_mm[i] <= cfg->ir_min_mm + 0.5f && toward < 0.0f) {
+            /* moving away, it dropped to its span's bottom: folded back */
+            *folded = (uint8_t)(*folded | (1 << i));
+        } else if (delta > PROBE_TELL_MM) {
+            *genuine = (uint8_t)(*genuine | (1 << i));
+        } else if (delta < -PROBE_TELL_MM) {
+            *folded = (uint8_t)(*folded | (1 << i));
+        }
+    }
+}
+
+int ffr_orient_probe_back(const ffr_ir_geom_t *g, uint8_t suspects)
+{
+    /* A ranger folded back sees a wall 3-5.5 cm off: beyond the body's face
+     * its beam leaves through. The rear rangers' beams (135 degrees off
+     * the axis) leave through the rear face, the centre one's through the
+     * front face: such a wall is behind, or ahead. The front corners' beams
+     * (45 degrees) leave through the side, 4 cm from the ranger: a wall
+     * folded back there is beside the body, along the move. So: forward,
+     * unless only the front may be blocked. */
+    int i, front = 0, rear = 0;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if (!((suspects >> i) & 1)) {
+            continue;
+        }
+        if (g->beam_cos[i] < -0.5f) {
+            rear = 1;
+        } else if (g->beam_cos[i] > 0.5f) {
+            front = 1;
+        }
+    }
+    return front && !rear;
+}
+
+/* The probe: a short slow straight move, watching the suspect rangers (a
+ * reading in the fold-back span): a wall that far comes nearer as the robot
+ * moves toward it, one folded back reads farther (and the other way round
+ * moving away): over 15 mm a wall as read changes by about 10 mm, one
+ * folded back by 3-4 times more the other way. It stops early only when a
+ * ranger it moves toward reads folded back. */
+static int escape_free(const ffr_state_t *st);
+
+static void probe_step(ffr_state_t *st)
+{
+    ffr_home_orient_t *o = &st->orient;
+    uint8_t genuine = 0u, folded = 0u, ahead = 0u;
+    float left = o->goal_mm - st->odo.dist_mm;
+    int i;
+    if (o->leg == 4u) {
+        /* nothing folded back: back to where it stood (the sweep from there
+         * sees what it would have seen without the probe) */
+        if (left > 0.0f && escape_free(st)) {
+            float v = ffr_stopping_speed(left, PROBE_SPEED_MM_S);
+            st->cmd_v_mm_s = o->reverse ? -v : v;
+            return;
+        }
+        ffr_stop(st);
+        o->leg = 0u;
+        o->phase = PH_CLEAR;
+        return;
+    }
+    ffr_orient_probe_tell(&st->cfg, &st->ir_geom, o->reverse & 1u, o->probed, o->probe_mm, st->ir_mm, &genuine,
+                          &folded);
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if ((o->reverse ? -1.0f : 1.0f) * st->ir_geom.beam_cos[i] > 0.3f) {
+            ahead = (uint8_t)(ahead | (1 << i));
+        }
+    }
+    if (left > 0.0f && !(folded & ahead) && escape_free(st)) {
+        float v = ffr_stopping_speed(left, PROBE_SPEED_MM_S);
+        st->cmd_v_mm_s = o->reverse ? -v : v;
+        return;
+    }
+    ffr_stop(st);
+    /* what the probe did not see folded back is taken as read (a wall
+     * along the move, or noise: no more moves for it) */
+    o->trusted = (uint8_t)(o->trusted | (o->probed & ~folded) | genuine);
+    o->folded = folded;
+    o->probed = 0u;
+    o->phase = PH_CLEAR;
+    if (folded == 0u) {
+        o->leg = 4u;
+        o->reverse ^= 1u;
+        o->goal_mm = st->odo.dist_mm + (PROBE_MM - left);
+        o->phase = PH_PROBE;
+    }
+}
+
 static int clear_step(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
     ffr_home_orient_t *o = &st->orient;
     float need = ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM;
-    float d, nx, ny;
-    if (o->escapes >= ESCAPE_TRIES || !ffr_orient_clearance(cfg, &st->ir_geom, st->ir_mm, &d, &nx, &ny) ||
-        d >= need) {
+    float d, nx, ny, mx, my, d2, nx2, ny2;
+    uint8_t suspects;
+    int i;
+    o->trusted = (uint8_t)(o->trusted | ffr_orient_probe_trust(cfg, o->probed, o->probe_mm, st->ir_mm));
+    o->probed = 0u;
+    suspects = (uint8_t)(ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_HOME_FOLD_MM) & ~o->trusted);
+    if (o->probe_done) {
+        suspects &= o->folded; /* after the probe: only what it saw folded back */
+    }
+    if (o->escapes >= ESCAPE_TRIES) {
         return 1;
     }
+    /* the line through two rangers' hits: not through two that may both
+     * be folded back (before the probe), nor through one seen to be (after
+     * it); two the probe could not tell (a wall along the move) may be one
+     * wall's */
+    if (ffr_orient_clearance_fold(cfg, &st->ir_geom, st->ir_mm, 0u, o->probe_done ? 0u : suspects,
+                                  (uint8_t)(o->probe_done ? suspects & o->folded : suspects), &d2, &nx2, &ny2) &&
+        d2 < need) {
+        /* a wall near as read: away from it */
+        d = d2;
+        nx = nx2;
+        ny = ny2;
+    } else if (!ffr_orient_clearance_fold(cfg, &st->ir_geom, st->ir_mm, suspects, 0u, suspects, &d, &nx, &ny) ||
+               d >= need) {
+        return 1; /* not near even if folded back */
+    } else if (!o->probe_done) {
+        /* near only if a reading is folded back: a probe tells which first
+         * (once per look: away from the nearest such wall) */
+        o->probe_done = 1u;
+        o->reverse = (uint8_t)ffr_orient_probe_back(&st->ir_geom, suspects);
+        o->target_rad = 0.0f;
+        o->goal_mm = st->odo.dist_mm + PROBE_MM;
+        o->probed = suspects;
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            o->probe_mm[i] = st->ir_mm[i];
+        }
+        o->phase = PH_PROBE;
+        return 0;
+    }
     start_escape(st, need, d, nx, ny);
+    /* the rangers this move goes away from: their readings tell fold-back */
+    if (o->leg == 0u) {
+        mx = o->reverse ? -1.0f : 1.0f;
+        my = 0.0f;
+    } else {
+        mx = 0.0f;
+        my = ny > 0.0f ? -1.0f : 1.0f;
+    }
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if (st->ir_geom.beam_cos[i] * mx + st->ir_geom.beam_sin[i] * my < -0.3f) {
+            o->probed = (uint8_t)(o->probed | (1 << i));
+            o->probe_mm[i] = st->ir_mm[i];
+        }
+    }
     return 0;
 }
 
@@ -585,6 +791,10 @@ int ffr_orient_step(ffr_state_t *st)
             return 0;
         }
         o->phase = PH_CLEAR; /* look again (next tick: the rangers from here) */
+        return 0;
+    }
+    if (o->phase == PH_PROBE) {
+        probe_step(st);
         return 0;
     }
     if (o->phase == PH_CLEAR) {

@@ -454,6 +454,186 @@ TEST(a_small_shift_across_the_way_is_not_made)
     beside_one_wall(420.0f, -420.0f + cfg.wall_target_mm);
 }
 
+/* A GP2D12 closer to a wall than its span's bottom (rig: 55 mm .. 100 mm
+ * reads ir_min_mm, 30 .. 55 mm folds back to read 100 .. 185 mm, chosen as
+ * the simulated part's curve, docs/sensors.md) */
+static float folded_mm(const ffr_config_t *cfg, float d)
+{
+    if (d >= cfg->ir_min_mm || !ffr_ir_valid(cfg, d)) {
+        return d;
+    }
+    if (d >= 55.0f) {
+        return cfg->ir_min_mm;
+    }
+    return cfg->ir_min_mm + (55.0f - (d < 30.0f ? 30.0f : d)) * 3.4f;
+}
+
+static void readings_folded(const ffr_config_t *cfg, const rig_walls_t *w, float x, float y, float th,
+                            float ir[FFR_IR_COUNT])
+{
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        ir[i] = folded_mm(cfg, rig_beam_mm(cfg, w, i, x, y, th));
+    }
+}
+
+TEST(a_reading_that_may_be_folded_back_counts_as_near)
+{
+    ffr_config_t cfg;
+    ffr_ir_geom_t g;
+    float ir[FFR_IR_COUNT], d, nx, ny;
+    float gap;
+    ffr_config_default(&cfg);
+    /* across the fold-back span and beyond: which readings are suspects */
+    rig_no_walls(&cfg, ir);
+    CHECK(ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM) == 0u);
+    ir[FFR_IR_RR] = cfg.ir_min_mm;
+    CHECK(ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM) == 0u); /* the bottom: near anyway */
+    ir[FFR_IR_RR] = 0.5f * (cfg.ir_min_mm + FFR_FOLD_MAX_MM);
+    CHECK(ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM) == (1 << FFR_IR_RR));
+    ir[FFR_IR_RR] = FFR_FOLD_MAX_MM + 1.0f;
+    CHECK(ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM) == 0u);
+    /* a wall square behind the body, from nearly touching to clear: the
+     * rear rangers read it folded back; taken as folded it is never farther
+     * than the turning radius, as read it may be well clear. Readings above
+     * FFR_FOLD_MAX_MM (a wall within about 37 mm of the ranger, 7 mm of the
+     * rear face) are not taken as folded back (docs/firmware.md) */
+    for (gap = 2.0f; gap <= 30.0f; gap += 2.0f) {
+        rig_walls_t w = {2000.0f, -2000.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        uint8_t sus;
+        w.ahead_x = 100.0f + gap; /* the rear face is 100 mm behind the axle: facing away from the wall */
+        readings_folded(&cfg, &w, 0.0f, 0.0f, PI_F, ir);
+        sus = ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM);
+        rig_geom(&g, &cfg, ir);
+        if (ir[FFR_IR_LR] > FFR_FOLD_MAX_MM && ir[FFR_IR_LR] < 200.0f) {
+            CHECK(sus == 0u); /* folded back beyond the span taken: not handled */
+            continue;
+        }
+        if (sus != 0u) {
+            CHECK(ffr_orient_clearance_fold(&cfg, &g, ir, sus, 0u, sus, &d, &nx, &ny));
+            CHECK(d < ffr_orient_turn_radius_mm(&cfg) + 20.0f); /* within the margin: it moves away */
+            CHECK(nx < -0.5f); /* behind */
+            /* and the probe's way for it: forward */
+            CHECK(ffr_orient_probe_back(&g, sus) == 0);
+        } else {
+            /* not folded: both rear rangers at their span's bottom, near as it is */
+            CHECK(ffr_orient_clearance(&cfg, &g, ir, &d, &nx, &ny));
+            CHECK(d < ffr_orient_turn_radius_mm(&cfg));
+        }
+    }
+    /* the centre ranger folded back alone: the probe goes backward */
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_CF] = 150.0f;
+    CHECK(ffr_orient_probe_back(rig_geom(&g, &cfg, ir), ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM)) == 1);
+    ir[FFR_IR_LR] = 150.0f; /* and a rear one too: forward */
+    CHECK(ffr_orient_probe_back(rig_geom(&g, &cfg, ir), ffr_orient_fold_suspects(&cfg, ir, FFR_FOLD_MAX_MM)) == 0);
+}
+
+TEST(a_short_move_tells_folded_back_from_far)
+{
+    ffr_config_t cfg;
+    ffr_ir_geom_t g;
+    float before[FFR_IR_COUNT], after[FFR_IR_COUNT];
+    float gap;
+    ffr_config_default(&cfg);
+    rig_no_walls(&cfg, before);
+    rig_geom(&g, &cfg, before);
+    /* a wall behind at any distance within the fold-back span or as far as
+     * the same readings would put it; the robot moves 15 mm forward */
+    for (gap = 2.0f; gap <= 150.0f; gap += 4.0f) {
+        rig_walls_t w = {2000.0f, -2000.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        uint8_t sus, genuine = 0u, folded = 0u, back = 0u;
+        w.ahead_x = 100.0f + gap;
+        readings_folded(&cfg, &w, 0.0f, 0.0f, PI_F, before);
+        sus = ffr_orient_fold_suspects(&cfg, before, FFR_FOLD_MAX_MM);
+        readings_folded(&cfg, &w, -15.0f, 0.0f, PI_F, after); /* facing -x: forward is -x */
+        ffr_orient_probe_tell(&cfg, &g, 0, sus, before, after, &genuine, &folded);
+        CHECK((genuine & folded) == 0u);
+        if (sus == 0u) {
+            CHECK(genuine == 0u && folded == 0u);
+            continue;
+        }
+        /* every suspect told; folded back exactly where the wall is within 55 mm of the rangers */
+        CHECK((genuine | folded) == sus);
+        {
+            int i;
+            for (i = 0; i < FFR_IR_COUNT; ++i) {
+                float d = rig_beam_mm(&cfg, &w, i, 0.0f, 0.0f, PI_F);
+                if ((sus >> i) & 1) {
+                    CHECK(((folded >> i) & 1) == (d < 55.0f ? 1 : 0));
+                }
+            }
+        }
+        /* the same move backward (toward the wall), watched from the far side */
+        ffr_orient_probe_tell(&cfg, &g, 1, sus, after, before, &genuine, &back);
+        (void)back;
+    }
+    /* a wall ahead approached: as far as read it comes nearer (genuine);
+     * folded back it reads farther (folded) */
+    {
+        uint8_t genuine = 0u, folded = 0u;
+        rig_no_walls(&cfg, before);
+        rig_no_walls(&cfg, after);
+        before[FFR_IR_CF] = 150.0f;
+        after[FFR_IR_CF] = 140.0f;
+        before[FFR_IR_LF] = 130.0f;
+        after[FFR_IR_LF] = 150.0f;
+        ffr_orient_probe_tell(&cfg, &g, 0, ffr_orient_fold_suspects(&cfg, before, FFR_FOLD_MAX_MM), before, after, &genuine, &folded);
+        CHECK(genuine == (1 << FFR_IR_CF));
+        CHECK(folded == (1 << FFR_IR_LF));
+    }
+}
+
+/* The whole firmware with its back to a wall it reads folded back, at any
+ * distance from 8 mm off the rear corners, facing away from it or turned up
+ * to 40 degrees either way: the body never reaches the wall while it
+ * orients. */
+TEST(backed_up_to_a_wall_read_folded_back)
+{
+    ffr_config_t cfg;
+    float gap, th;
+    ffr_config_default(&cfg);
+    if (FFR_HOME_FOLD_MM <= 0.0f) {
+        /* built without the fold-back rules (the default): not exercised
+         * here; `make firmware-test` with -DFFR_HOME_FOLD_MM=160.0f runs it */
+        CHECK(FFR_HOME_FOLD_MM == 0.0f);
+        return;
+    }
+    for (gap = 8.0f; gap <= 40.0f; gap += 4.0f) { /* nearer: read above FFR_FOLD_MAX_MM */
+        for (th = PI_F - 40.0f * FFR_DEG; th <= PI_F + 40.1f * FFR_DEG; th += 10.0f * FFR_DEG) {
+            /* a hallway 460 mm wide along x, closed at x = ahead_x; the robot's rear toward it */
+            rig_walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+            rig_t r;
+            float ir[FFR_IR_COUNT];
+            float c = ffr_cosf(th), s = ffr_sinf(th);
+            int i, k, clear = 1;
+            /* the rear corners' farthest x: the wall that far plus the gap */
+            float rear = -100.0f * c + 100.0f * ffr_absf(s);
+            w.ahead_x = rear + gap;
+            if (!body_clear(&w, 0.0f, 0.0f, th)) {
+                continue;
+            }
+            rig_init(&r, &cfg);
+            r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
+            r.st.odo.heading_rad = th;
+            r.in.start = 1;
+            for (i = 0; i < 1500; ++i) {
+                readings_folded(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+                for (k = 0; k < FFR_IR_COUNT; ++k) {
+                    r.in.ir_mv[k] = ffr_ir_valid(&cfg, ir[k]) ? rig_mv_for_mm(&cfg, ir[k]) : 0u;
+                }
+                rig_tick(&r);
+                if (r.out.state != FFR_ST_ORIENT && i > 2) {
+                    break;
+                }
+                clear &= body_clear(&w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+            }
+            CHECK(r.out.state == FFR_ST_FOLLOW);
+            CHECK(clear);
+        }
+    }
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -461,4 +641,7 @@ SUITE(home_orient,
       TEST_REF(the_firmware_orients_before_the_route),
       TEST_REF(the_nearest_wall_from_the_five_rangers),
       TEST_REF(room_to_turn_first_then_the_sweep),
-      TEST_REF(a_small_shift_across_the_way_is_not_made));
+      TEST_REF(a_small_shift_across_the_way_is_not_made),
+      TEST_REF(a_reading_that_may_be_folded_back_counts_as_near),
+      TEST_REF(a_short_move_tells_folded_back_from_far),
+      TEST_REF(backed_up_to_a_wall_read_folded_back));
