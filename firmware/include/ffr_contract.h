@@ -29,7 +29,7 @@ extern "C" {
  * carries up to FFR_CONFIG_MAX configuration bytes. */
 #define FFR_CONFIG_MAX 1024u
 #ifndef FFR_STATE_MAX
-#define FFR_STATE_MAX 3072u /* chosen: ours is 2096 bytes (docs/contract.md); a board may build with -DFFR_STATE_MAX=... */
+#define FFR_STATE_MAX 2048u /* chosen: ours is under 2 KB (docs/contract.md); a board may build with -DFFR_STATE_MAX=... */
 #endif
 
 /* ------------------------------------------------------------------ */
