@@ -25,7 +25,9 @@ static void step(ffr_config_t *c, uint8_t op, uint8_t side, uint8_t event, uint8
 #define FOLLOW(side, ev) step(c, FFR_OP_FOLLOW, FFR_SIDE_##side, FFR_EV_##ev, 0, 0)
 #define TURN(deg) step(c, FFR_OP_TURN, FFR_SIDE_NONE, 0, 0, (int16_t)(deg))
 #define TURN_CASE(prefer) step(c, FFR_OP_TURN, FFR_SIDE_##prefer, 0, 0, 0)
-#define FORWARD(side, mm) step(c, FFR_OP_FORWARD, FFR_SIDE_##side, 0, 0, (int16_t)(mm))
+/* follow a wall until the n-th opening (from 1) on open_side, half a hallway before its far edge */
+#define FOLLOW_GAP(side, open_side, n) \
+    step(c, FFR_OP_FOLLOW, FFR_SIDE_##side, FFR_EV_GAP_##open_side, (uint8_t)(n), 0)
 #define ROOM(n) step(c, FFR_OP_ROOM, FFR_SIDE_NONE, 0, (uint8_t)(n), 0)
 #define HOME(side) step(c, FFR_OP_HOME, FFR_SIDE_##side, 0, 0, 0)
 #define END() step(c, FFR_OP_END, FFR_SIDE_NONE, 0, 0, 0)
@@ -34,11 +36,9 @@ static void step(ffr_config_t *c, uint8_t op, uint8_t side, uint8_t event, uint8
  * The default route, from the home circle facing up the east hallway.
  * Rooms are visited 1 (MID), 2 (TL), 3 (BL), 4 (BR). Doors are found by
  * their wall ending ("FOLLOW ... OPEN"), so a door moved along its wall is
- * still found. Four legs still cross junctions by a distance of the map
- * (FORWARD); each one's sensed form is in its comment (FOLLOW_GAP: count the
- * openings on a side, stop half a hallway before the n-th one's far edge),
- * not the default yet: it lost missions on the hold-out sweeps
- * (docs/robustness.md, "The route's junction legs sensed").
+ * still found. The four legs across junctions end on the opening they
+ * drive to, counted on one side (FOLLOW_GAP), not on a distance of the map
+ * (docs/firmware.md, "The four junction legs").
  */
 static void default_route(ffr_config_t *c)
 {
@@ -63,8 +63,7 @@ static void default_route(ffr_config_t *c)
     TURN(-90);              /* 17                                              */
     ROOM(3);                /* 18                                              */
     TURN(90);               /* 19 out of room 3 facing east: north             */
-    FORWARD(LEFT, 440);     /* 20 across the corridor to room 4's door
-                             *    (sensed: FOLLOW_GAP(LEFT, R, 1))             */
+    FOLLOW_GAP(LEFT, R, 1); /* 20 up the corridor to room 4's door           */
     TURN(-90);              /* 21                                              */
     ROOM(4);                /* 22                                              */
     END();                  /* 23 no flame anywhere                            */
@@ -79,21 +78,20 @@ static void default_route(ffr_config_t *c)
     TURN(90);               /* 28 east                                         */
     FOLLOW(RIGHT, OPEN_R);  /* 29 until the corridor opens on the right        */
     TURN(-90);              /* 30 south                                        */
-    FORWARD(RIGHT, 460);    /* 31 to the middle hallway
-                             *    (sensed: FOLLOW_GAP(RIGHT, L, 1))            */
+    FOLLOW_GAP(RIGHT, L, 1); /* 31 to the middle hallway                    */
     TURN(90);               /* 32 east                                         */
     HOME(RIGHT);            /* 33                                              */
     /* home from room 3 (leaving it eastward) */
     c->return_start[2] = c->route_len;
     TURN(90);               /* 34 north                                        */
-    FORWARD(LEFT, 920);     /* 35 up the corridor to the middle hallway
-                             *    (sensed: FOLLOW_GAP(LEFT, R, 2))             */
+    FOLLOW_GAP(LEFT, R, 2); /* 35 up the corridor to the middle hallway
+                             *    (room 4's door is the first opening)         */
     TURN(-90);              /* 36 east                                         */
     HOME(RIGHT);            /* 37                                              */
     /* home from room 4 (leaving it westward) */
     c->return_start[3] = c->route_len;
     TURN(-90);              /* 38 north                                        */
-    FORWARD(LEFT, 480);     /* 39 (sensed: FOLLOW_GAP(LEFT, R, 1))             */
+    FOLLOW_GAP(LEFT, R, 1); /* 39 up the corridor to the middle hallway      */
     TURN(-90);              /* 40 east                                         */
     HOME(RIGHT);            /* 41                                              */
 }
