@@ -268,13 +268,9 @@ static void explore_step(ffr_state_t *st, const ffr_inputs_t *in)
         follow(st);
         return;
     case EX_TURN:
-        ffr_stop(st);
-        st->cmd_v_mm_s = ffr_turn_room_v(cfg, &st->odo, st->ir_mm);
-        st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, e->target_rad)
-                          * ffr_turn_onset(cfg, &st->odo, st->ir_mm);
+        ffr_turn_toward(st, e->target_rad);
         if (ffr_turn_done(cfg, &st->odo, e->target_rad)) {
-            st->route.heading_ref_rad = e->target_rad;
-            ffr_stop(st);
+            ffr_turn_finish(st, e->target_rad);
             phase(st, e->after);
         }
         return;

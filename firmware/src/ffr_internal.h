@@ -168,6 +168,11 @@ int ffr_turn_done(const ffr_config_t *cfg, const ffr_odometry_t *o, float target
 #endif
 float ffr_turn_room_v(const ffr_config_t *cfg, const ffr_odometry_t *o, const float ir_mm[FFR_IR_COUNT]);
 float ffr_turn_onset(const ffr_config_t *cfg, const ffr_odometry_t *o, const float ir_mm[FFR_IR_COUNT]);
+/* A turn in place onto target_rad (the route's TURN and the explorer's):
+ * each tick's commands, and, once ffr_turn_done, the stop and the corridor
+ * heading reference set to the target. */
+void ffr_turn_toward(ffr_state_t *st, float target_rad);
+void ffr_turn_finish(ffr_state_t *st, float target_rad);
 
 /* line_counter.c */
 void ffr_lines_reset(ffr_line_counter_t *l);

@@ -150,13 +150,9 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
         }
         return;
     case FFR_OP_TURN:
-        ffr_stop(st);
-        st->cmd_v_mm_s = ffr_turn_room_v(cfg, &st->odo, st->ir_mm);
-        st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, st->route.target_rad)
-                          * ffr_turn_onset(cfg, &st->odo, st->ir_mm);
+        ffr_turn_toward(st, st->route.target_rad);
         if (ffr_turn_done(cfg, &st->odo, st->route.target_rad)) {
-            st->route.heading_ref_rad = st->route.target_rad;
-            ffr_stop(st);
+            ffr_turn_finish(st, st->route.target_rad);
             next(st);
         }
         return;

@@ -61,3 +61,17 @@ float ffr_turn_onset(const ffr_config_t *cfg, const ffr_odometry_t *o, const flo
     }
     return ffr_clampf(1.0f - (v - FFR_TURN_ROLL_MM_S) / 100.0f, 0.0f, 1.0f);
 }
+
+void ffr_turn_toward(ffr_state_t *st, float target_rad)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    ffr_stop(st);
+    st->cmd_v_mm_s = ffr_turn_room_v(cfg, &st->odo, st->ir_mm);
+    st->cmd_w_rad_s = ffr_turn_yaw(cfg, st->odo.heading_rad, target_rad) * ffr_turn_onset(cfg, &st->odo, st->ir_mm);
+}
+
+void ffr_turn_finish(ffr_state_t *st, float target_rad)
+{
+    st->route.heading_ref_rad = target_rad;
+    ffr_stop(st);
+}

@@ -48,19 +48,25 @@ static void hallway(rig_t *r, const ffr_config_t *cfg)
     r->in.ir_mv[FFR_IR_RR] = rig_mv_for_mm(cfg, 226.0f);
 }
 
+/* Started in a hallway (its walls fed to the rangers), 30 ticks on. */
+static void started_in_a_hallway(rig_t *r, const ffr_config_t *cfg)
+{
+    int i;
+    rig_init(r, cfg);
+    r->in.start = 1;
+    hallway(r, cfg);
+    for (i = 0; i < 30; ++i) {
+        rig_tick(r);
+    }
+}
+
 TEST(the_mode_switch_is_off_by_default)
 {
     ffr_config_t cfg;
     rig_t r;
-    int i;
     ffr_config_default(&cfg);
     CHECK(cfg.start_area == FFR_START_HOME);
-    rig_init(&r, &cfg);
-    r.in.start = 1;
-    hallway(&r, &cfg);
-    for (i = 0; i < 30; ++i) {
-        rig_tick(&r);
-    }
+    started_in_a_hallway(&r, &cfg);
     /* the route program's first step, not the explorer */
     CHECK(r.out.state == FFR_ST_FOLLOW);
     CHECK(r.out.step == 0);
@@ -74,12 +80,7 @@ TEST(in_a_hallway_it_follows_passes_home_and_stops_there_with_the_flame_out)
     int i;
     ffr_config_default(&cfg);
     cfg.start_area = FFR_START_HALLWAY;
-    rig_init(&r, &cfg);
-    r.in.start = 1;
-    hallway(&r, &cfg);
-    for (i = 0; i < 30; ++i) {
-        rig_tick(&r);
-    }
+    started_in_a_hallway(&r, &cfg);
     CHECK(r.out.state == FFR_ST_FOLLOW);
     CHECK(r.out.step == 0); /* the explorer's phase: follow */
     CHECK(r.st.explore.side == FFR_SIDE_RIGHT);
@@ -117,15 +118,9 @@ TEST(a_lone_line_on_the_way_home_turns_the_robot_round)
 {
     ffr_config_t cfg;
     rig_t r;
-    int i;
     ffr_config_default(&cfg);
     cfg.start_area = FFR_START_HALLWAY;
-    rig_init(&r, &cfg);
-    r.in.start = 1;
-    hallway(&r, &cfg);
-    for (i = 0; i < 30; ++i) {
-        rig_tick(&r);
-    }
+    started_in_a_hallway(&r, &cfg);
     r.st.flags |= FFR_FLAG_EXTINGUISHED;
     rig_line(&r, 5, 3);
     /* a doorway's line crossed straight: past a circle's chord with no second

@@ -8,6 +8,15 @@
 #include "rig.h"
 #include "unit.h"
 
+/* The rangers' distances as the firmware reads them (mV; none: 0 mV). */
+static void feed(rig_t *r, const ffr_config_t *cfg, const float ir[FFR_IR_COUNT])
+{
+    int k;
+    for (k = 0; k < FFR_IR_COUNT; ++k) {
+        r->in.ir_mv[k] = ffr_ir_valid(cfg, ir[k]) ? rig_mv_for_mm(cfg, ir[k]) : 0u;
+    }
+}
+
 #ifndef FFR_HOME_SKIP_MM
 #define FFR_HOME_SKIP_MM_BUILT 0.0f
 #else
@@ -315,7 +324,7 @@ static int orient_among(const rig_walls_t *w, float th0)
     ffr_config_t cfg;
     rig_t r;
     float ir[FFR_IR_COUNT];
-    int i, k, clear = 1, escaped = 0;
+    int i, clear = 1, escaped = 0;
     ffr_config_default(&cfg);
     rig_init(&r, &cfg);
     r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
@@ -323,9 +332,7 @@ static int orient_among(const rig_walls_t *w, float th0)
     r.in.start = 1;
     for (i = 0; i < 1500; ++i) {
         readings(&cfg, w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
-        for (k = 0; k < FFR_IR_COUNT; ++k) {
-            r.in.ir_mv[k] = ffr_ir_valid(&cfg, ir[k]) ? rig_mv_for_mm(&cfg, ir[k]) : 0u;
-        }
+        feed(&r, &cfg, ir);
         rig_tick(&r);
         if (r.out.state != FFR_ST_ORIENT && i > 2) {
             break;
@@ -385,16 +392,14 @@ static void beside_one_wall(float gap, float end_y)
         rig_t r;
         float ir[FFR_IR_COUNT];
         float last_y = 0.0f, last_th = th;
-        int i, k, clear = 1;
+        int i, clear = 1;
         rig_init(&r, &cfg);
         r.st.cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
         r.st.odo.heading_rad = th;
         r.in.start = 1;
         for (i = 0; i < 1500; ++i) {
             readings(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
-            for (k = 0; k < FFR_IR_COUNT; ++k) {
-                r.in.ir_mv[k] = ffr_ir_valid(&cfg, ir[k]) ? rig_mv_for_mm(&cfg, ir[k]) : 0u;
-            }
+            feed(&r, &cfg, ir);
             last_y = r.st.odo.y_mm;
             last_th = r.st.odo.heading_rad;
             rig_tick(&r);
@@ -606,7 +611,7 @@ TEST(backed_up_to_a_wall_read_folded_back)
             rig_t r;
             float ir[FFR_IR_COUNT];
             float c = ffr_cosf(th), s = ffr_sinf(th);
-            int i, k, clear = 1;
+            int i, clear = 1;
             /* the rear corners' farthest x: the wall that far plus the gap */
             float rear = -100.0f * c + 100.0f * ffr_absf(s);
             w.ahead_x = rear + gap;
@@ -619,9 +624,7 @@ TEST(backed_up_to_a_wall_read_folded_back)
             r.in.start = 1;
             for (i = 0; i < 1500; ++i) {
                 readings_folded(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
-                for (k = 0; k < FFR_IR_COUNT; ++k) {
-                    r.in.ir_mv[k] = ffr_ir_valid(&cfg, ir[k]) ? rig_mv_for_mm(&cfg, ir[k]) : 0u;
-                }
+                feed(&r, &cfg, ir);
                 rig_tick(&r);
                 if (r.out.state != FFR_ST_ORIENT && i > 2) {
                     break;
