@@ -166,6 +166,74 @@ TEST(the_corridor_is_clear_up_to_a_box_in_the_bodys_way)
     }
 }
 
+/* The corridor's first marked, non-candle cell looked for by dense samples
+ * (2 mm ahead, about 2 mm across) over the body's width widened by grow_mm
+ * a side: its distance past the front, or -1 if none up to reach_mm. */
+static float sampled_free(const ffr_obstacles_t *o, const ffr_config_t *cfg, float x, float y, float dir,
+                          float flame, float reach_mm, float grow_mm)
+{
+    float c = ffr_cosf(dir), s = ffr_sinf(dir), fc = ffr_cosf(flame), fs = ffr_sinf(flame);
+    float w = cfg->body_half_width_mm + grow_mm;
+    float a;
+    int j;
+    for (a = 0.0f; a <= reach_mm; a += 2.0f) {
+        float ahead = cfg->body_front_mm + a;
+        for (j = 0; j <= 100; ++j) {
+            float l = -w + 2.0f * w * (float)j / 100.0f;
+            float px = x + c * ahead - s * l, py = y + s * ahead + c * l;
+            float gx = (px - (float)o->ox_mm) / CELL, gy = (py - (float)o->oy_mm) / CELL;
+            float ccx, ccy;
+            if (!ffr_obst_at(o, px, py) || gx < 0.0f || gy < 0.0f) {
+                continue;
+            }
+            ccx = (float)o->ox_mm + ((float)(int)gx + 0.5f) * CELL - x;
+            ccy = (float)o->oy_mm + ((float)(int)gy + 0.5f) * CELL - y;
+            if (ffr_absf(-ccx * fs + ccy * fc) < 60.0f) {
+                continue; /* the candle's (obstacle_avoid.c AVOID_CANDLE_LAT_MM) */
+            }
+            return a;
+        }
+    }
+    return -1.0f;
+}
+
+TEST(the_corridor_walked_over_the_cells_is_what_dense_samples_see)
+{
+    uint32_t s = 61u;
+    int k, hits = 0;
+    ffr_config_t cfg;
+    config(&cfg);
+    for (k = 0; k < 150; ++k) {
+        ffr_obstacles_t o;
+        float x = draw(&s, -300.0f, 300.0f), y = draw(&s, -300.0f, 300.0f);
+        float dir = draw(&s, -FFR_PI, FFR_PI), flame = dir + draw(&s, -0.7f, 0.7f);
+        float reach = draw(&s, 0.0f, 320.0f);
+        float got, inner, outer;
+        int m, n = 1 + (int)draw(&s, 0.0f, 12.0f);
+        ffr_obst_reset(&o, 0.0f, 0.0f);
+        for (m = 0; m < n; ++m) {
+            ffr_obst_mark(&o, x + draw(&s, -500.0f, 500.0f), y + draw(&s, -500.0f, 500.0f));
+        }
+        got = ffr_obst_free_mm(&o, &cfg, x, y, dir, flame, reach, NULL);
+        /* samples over a corridor 3 mm narrower a side: what they see, the
+         * walk sees no later (its distance rounded up to 20 mm) ... */
+        inner = sampled_free(&o, &cfg, x, y, dir, flame, reach, -3.0f);
+        /* ... and over one 3 mm wider: nothing they miss is seen */
+        outer = sampled_free(&o, &cfg, x, y, dir, flame, reach, 3.0f);
+        CHECK(got >= 0.0f && got <= reach);
+        if (inner >= 0.0f) {
+            CHECK(got <= inner + 20.0f);
+        }
+        if (outer < 0.0f) {
+            CHECK(got == reach);
+        } else {
+            CHECK(got >= outer - 2.0f);
+        }
+        hits += inner >= 0.0f;
+    }
+    CHECK(hits > 30); /* the draws put marks in the corridor often */
+}
+
 TEST(a_mark_on_the_flames_line_of_sight_is_the_candle)
 {
     ffr_config_t cfg;
@@ -291,6 +359,7 @@ SUITE(obstacle_avoid,
       TEST_REF(a_marked_point_is_found_and_nothing_else_is),
       TEST_REF(the_rangers_hits_are_marked_where_they_are_in_odometrys_frame),
       TEST_REF(the_corridor_is_clear_up_to_a_box_in_the_bodys_way),
+      TEST_REF(the_corridor_walked_over_the_cells_is_what_dense_samples_see),
       TEST_REF(a_mark_on_the_flames_line_of_sight_is_the_candle),
       TEST_REF(the_detour_turns_away_from_a_box_and_keeps_its_side),
       TEST_REF(the_trail_keeps_the_bends_of_an_approach),
