@@ -300,6 +300,29 @@ typedef struct {
     uint8_t reserved[3];
 } ffr_scan_square_t;
 
+/* What the rangers saw in a room (obstacle_avoid.c): a bit per 64 mm cell of
+ * a 1.54 m square in odometry's frame, centred a little beyond where the
+ * first scan is made (kept small: the state must fit FFR_STATE_MAX; a row of
+ * cells is three bytes). */
+#define FFR_OBST_CELLS 24          /* cells a side                             */
+#define FFR_OBST_VIA 3             /* turning points of a detour, kept to back out by */
+typedef struct {
+    int16_t ox_mm, oy_mm;          /* odometry position of the grid's corner   */
+    uint8_t bits[FFR_OBST_CELLS * FFR_OBST_CELLS / 8];
+    int16_t via_x_mm[FFR_OBST_VIA]; /* where the approach turned (its trail)    */
+    int16_t via_y_mm[FFR_OBST_VIA];
+    float trail_rad;               /* the heading when the last turning point was kept */
+    int16_t free_mm;               /* the detour's corridor: clear this far (mm) */
+    int16_t best_free_mm;          /* the search under way: its best corridor's clearance */
+    int8_t offset;                 /* the detour's offset from the flame now (steps, + left) */
+    int8_t best;                   /* the search under way: its best offset so far */
+    int8_t first;                  /* the search under way: the side it tries first (+-1; 0: none) */
+    uint8_t next;                  /* the search under way: the next heading it looks along */
+    uint8_t n_via;
+    uint8_t retrace;               /* backing out: 0 not decided, 1 by the turning points, 2 straight */
+    uint8_t reserved[2];
+} ffr_obstacles_t;
+
 typedef struct {
     uint8_t phase;
     uint8_t room;
@@ -321,6 +344,11 @@ typedef struct {
     uint8_t flame_near;            /* the approach has seen the flame near (room.c FLAME_NEAR) */
     uint8_t reserved[3];
     ffr_scan_square_t square;      /* the walls seen in the scan (turn_calibration.c) */
+    float entry_flame;             /* the strongest flame sum driving in (room.c) */
+    int16_t deeper_mm;             /* how far the second scan point is beyond the first */
+    uint8_t scans;                 /* scan points used in this room (1, or 2: deeper in) */
+    uint8_t reserved2;
+    ffr_obstacles_t obst;          /* the room's obstacles (obstacle_avoid.c)  */
 } ffr_room_state_t;
 
 /* The rangers' geometry in the body frame (x ahead, y left; ir_calibration.c):

@@ -251,6 +251,34 @@ float ffr_leave_guard(const ffr_state_t *st);
  * than the scan's turn in place needs (the body's corner radius + a margin). */
 float ffr_scan_room_offset(const ffr_state_t *st);
 
+/* obstacle_avoid.c: what the rangers saw in a room, as a bit grid in
+ * odometry's frame (st->room.obst), and the approach's detour around it. */
+/* An empty grid centred on (cx, cy) mm, no detour, no points to back out by. */
+void ffr_obst_reset(ffr_obstacles_t *o, float cx_mm, float cy_mm);
+/* Mark the cell under (x, y) mm; outside the grid: nothing. */
+void ffr_obst_mark(ffr_obstacles_t *o, float x_mm, float y_mm);
+int ffr_obst_at(const ffr_obstacles_t *o, float x_mm, float y_mm);
+/* This tick's ranger hits (valid, within 60 cm) marked. */
+void ffr_obst_record(ffr_obstacles_t *o, const ffr_config_t *cfg, const ffr_odometry_t *odo, const ffr_ir_geom_t *g,
+                     const float ir_mm[FFR_IR_COUNT]);
+/* The corridor the body sweeps from (x, y) heading dir_rad: how far (mm, past
+ * the body's front, up to reach_mm) it is clear; marks within 6 cm of the
+ * line of sight flame_rad are the candle's. *lat_mm (if not NULL): where
+ * across (+ left) the first mark in it is. */
+float ffr_obst_free_mm(const ffr_obstacles_t *o, const ffr_config_t *cfg, float x_mm, float y_mm, float dir_rad,
+                       float flame_rad, float reach_mm, float *lat_mm);
+/* The heading offset (rad, + left) from the flame's line of sight flame_rad
+ * whose corridor is clear for reach_mm (0: the straight one is), else the one
+ * clear farthest; *free_mm: how far that is. */
+float ffr_obst_detour(ffr_obstacles_t *o, const ffr_config_t *cfg, const ffr_odometry_t *odo, float flame_rad,
+                      float reach_mm, float *free_mm);
+/* The approach's trail, for backing out the way it came: each tick of an
+ * approach (begin: its first), the position is kept (o->via_*, three at
+ * most) where the heading has turned 15 degrees since the last kept. */
+void ffr_obst_trail(ffr_obstacles_t *o, const ffr_odometry_t *odo, int begin);
+/* The nearest marked cell's centre from (x, y), mm; radius_mm if none nearer. */
+float ffr_obst_nearest_mm(const ffr_obstacles_t *o, float x_mm, float y_mm, float radius_mm);
+
 /* drive.c: corridor driving shared by the route steps. */
 void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed);
 /* A front corner's ranger seeing a wall beside the front half: the yaw

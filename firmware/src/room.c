@@ -27,6 +27,11 @@
  *              APPROACH (stopped by strength alone) or failed (not out)
  *   VERIFY --stays out verify_ms--> BACK_TURN --> BACK_DRIVE --> LEAVE_TURN;  --back--> EXTINGUISH
  *   LEAVE_TURN --facing out--> LEAVE_LINE --line--> LEAVE_OUT --out--> (left)
+ *   SCAN --a full turn, no flame, but one seen driving in--> DEEPER --> SCAN (once a room)
+ *
+ * Furniture (obstacle_avoid.c): the scan and the approach put the rangers'
+ * hits into a grid; the approach detours around what is in the body's way to
+ * the flame and backs out through the detour's turning points.
  */
 #include "ffr_internal.h"
 
@@ -43,6 +48,7 @@ enum {
     RP_LEAVE_TURN,
     RP_LEAVE_LINE,
     RP_LEAVE_OUT,
+    RP_DEEPER,
     RP_COUNT
 };
 /* a handler's "no transition" */
@@ -80,6 +86,42 @@ enum {
 #define BAL_MIN_SUM 1.0f
 /* backing out, the scan point reached within this (mm) */
 #define BACK_AT_SCAN_MM 15.0f
+/* backing out after a detour: a point passed this near counts as reached
+ * (mm), and the tail is first turned toward the next one if it points more
+ * than this far off (degrees; chosen) */
+#define BACK_VIA_PASSED_MM 60.0f
+#define BACK_TURN_FIRST_DEG 30.0f
+/* chosen: a flame seen driving in this far (share) from the dark level to
+ * flame_detect, and the scan from there finds none: something in the room
+ * hides it (furniture), and a second scan is made deeper in. Half way is
+ * well clear of the sensors' noise (a few counts) */
+#define ENTRY_SEEN_SHARE 0.5f
+/* chosen: the second scan point at most this far beyond the first, along the
+ * entry heading (a room is 1-1.25 m deep; the first point ~0.4 m in) */
+#define DEEPER_MM 400.0f
+/* the scan turns in place: nothing the rangers saw within the body's corner
+ * radius (156 mm) and this margin of the second scan point (chosen) */
+#define DEEPER_CLEAR_MARGIN_MM 35.0f
+/* ... going on brings a mark nearer by more than this (mm, of the 40 mm
+ * looked ahead): not a wall alongside, whose nearest cell only wavers with
+ * the grid's 64 mm cells */
+#define DEEPER_CLOSING_MM 15.0f
+/* the approach looks for obstacles in its corridor this share of the flame's
+ * distance told by its strength (FLAME_REACH at FLAME_REACH_MM; chosen: the
+ * strength's distance is good to about +-40 % over the flames' sizes, and
+ * the candle and the walls behind it must stay out), and at most this far
+ * past the body's front (chosen) */
+#define FLAME_REACH_MM 260.0f
+#define AVOID_SHARE 0.5f
+#define AVOID_LOOK_MM 300.0f
+/* driving to the second scan point, the clearance is checked this far ahead
+ * (mm, twice: a tick or two of travel at room speed) */
+#define AVOID_STEP_AHEAD_MM 20.0f
+/* the obstacle grid (1.54 m a side) is centred this far beyond the scan
+ * point along the entry heading (chosen: the rangers' kept hits reach 0.7 m
+ * round the scan point; the approach goes on into the room, toward the far
+ * wall, not back to the door) */
+#define GRID_AHEAD_MM 200.0f
 /* room_state_t.flame_found: none, found, and found with the approach stopped
  * by the flame's strength (FLAME_REACH) beside a wall, then going closer */
 enum { FOUND = 1, FOUND_BY_STRENGTH = 2, FOUND_CLOSER = 3 };
@@ -113,7 +155,7 @@ static void enter(ffr_state_t *st, uint8_t p)
 {
     static const uint8_t codes[RP_COUNT] = {
         FFR_ST_ENTER, FFR_ST_ENTER, FFR_ST_SCAN, FFR_ST_SCAN, FFR_ST_APPROACH, FFR_ST_EXTINGUISH,
-        FFR_ST_VERIFY, FFR_ST_TO_DOOR, FFR_ST_TO_DOOR, FFR_ST_EXIT, FFR_ST_EXIT, FFR_ST_EXIT};
+        FFR_ST_VERIFY, FFR_ST_TO_DOOR, FFR_ST_TO_DOOR, FFR_ST_EXIT, FFR_ST_EXIT, FFR_ST_EXIT, FFR_ST_ENTER};
     ffr_room_state_t *r = &st->room;
     if (p == RP_SCAN) {
         r->start_heading_rad = st->odo.heading_rad;
@@ -139,6 +181,10 @@ void ffr_room_begin(ffr_state_t *st, uint8_t room, float entry_heading_rad)
     st->room.exit_heading_rad = entry_heading_rad;
     st->room.lost_since_ms = 0u;
     st->room.flame_near = 0;
+    st->room.entry_flame = 0.0f;
+    st->room.deeper_mm = 0;
+    st->room.scans = 1u;
+    ffr_obst_reset(&st->room.obst, st->odo.x_mm, st->odo.y_mm);
     enter(st, RP_ENTER_LINE);
 }
 
@@ -163,6 +209,7 @@ static uint8_t on_enter_line(ffr_state_t *st, room_tick_t *t)
     const ffr_config_t *cfg = &st->cfg;
     ffr_room_state_t *r = &st->room;
     uint8_t next = RP_STAY;
+    r->entry_flame = t->sig > r->entry_flame ? t->sig : r->entry_flame;
     if (st->lines.edge) {
         st->flags |= FFR_FLAG_IN_ROOM;
         /* the line is under the line sensor, ahead of the origin */
@@ -183,10 +230,14 @@ static uint8_t on_enter_in(ffr_state_t *st, room_tick_t *t)
     ffr_room_state_t *r = &st->room;
     /* deep enough that a candle along the door's wall can be approached
      * with room to spare; the candle circle or a wall ahead stops it sooner */
+    r->entry_flame = t->sig > r->entry_flame ? t->sig : r->entry_flame;
     if (t->moved >= cfg->room_entry_mm || st->lines.edge || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
         ffr_stop(st);
         r->scan_x_mm = st->odo.x_mm;
         r->scan_y_mm = st->odo.y_mm;
+        /* the grid's centre a little beyond the scan point, into the room */
+        ffr_obst_reset(&r->obst, st->odo.x_mm + GRID_AHEAD_MM * ffr_cosf(r->entry_heading_rad),
+                       st->odo.y_mm + GRID_AHEAD_MM * ffr_sinf(r->entry_heading_rad));
         return RP_SCAN;
     }
     ffr_drive_heading(st, r->entry_heading_rad + ffr_scan_room_offset(st),
@@ -232,6 +283,7 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
     float turned = ffr_absf(st->odo.heading_rad - r->start_heading_rad);
     float dir = cfg->scan_dir ? -1.0f : 1.0f;
     ffr_scan_sq_record(&r->square, cfg, &st->odo, &st->ir_geom, st->ir_mm);
+    ffr_obst_record(&r->obst, cfg, &st->odo, &st->ir_geom, st->ir_mm);
     if (ffr_through_door(st, st->odo.heading_rad)) {
         sig = 0.0f; /* a flame out there is not this room's */
     }
@@ -256,6 +308,12 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
         if (r->lost_since_ms == 0u) {
             ffr_stop(st);
             square_up(st);
+            if (r->scans < 2u
+                && r->entry_flame >= FLAME_DARK_NOMINAL + ENTRY_SEEN_SHARE * (cfg->flame_detect - FLAME_DARK_NOMINAL)) {
+                /* seen driving in, not from here: look again deeper in */
+                r->scans = 2u;
+                return RP_DEEPER;
+            }
             return RP_LEAVE_TURN; /* no flame in this room */
         }
         if (st->t_ms - r->lost_since_ms >= FFR_FLAME_LOST_MS) {
@@ -273,7 +331,21 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
 static uint8_t on_turn_best(ffr_state_t *st, room_tick_t *t)
 {
     (void)t;
-    return turn_to(st, st->room.best_heading_rad) ? RP_APPROACH : RP_STAY;
+    if (turn_to(st, st->room.best_heading_rad)) {
+        ffr_obst_trail(&st->room.obst, &st->odo, 1);
+        return RP_APPROACH;
+    }
+    return RP_STAY;
+}
+
+/* How far past the body's front the approach looks for obstacles: a share
+ * of the flame's distance as its strength tells it (none once it is near). */
+static float avoid_reach(const ffr_state_t *st, float sig)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    float s = sig > 0.5f * cfg->flame_detect ? sig : 0.5f * cfg->flame_detect;
+    float d = FLAME_REACH_MM * ffr_sqrtf(FLAME_REACH * cfg->flame_detect / s);
+    return ffr_clampf(AVOID_SHARE * d - cfg->body_front_mm, 0.0f, AVOID_LOOK_MM);
 }
 
 static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
@@ -287,6 +359,16 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
     int guard_stop, guard_near;
     const ffr_door_frame_t df = ffr_door_frame(st);
     float guard_w = ffr_approach_guard(st, &df, bal, &guard_stop, &guard_near);
+    float flame_dir = st->odo.heading_rad + bal * cfg->flame_steer_deg * FFR_DEG;
+    float free_mm;
+    /* near the flame (or going closer after the fans) the guards alone, as
+     * without furniture: the candle's own base is then in the corridor */
+    float reach = (sig >= FLAME_NEAR * cfg->flame_detect || r->flame_near || r->flame_found == FOUND_CLOSER)
+                      ? 0.0f
+                      : avoid_reach(st, sig);
+    float detour = ffr_obst_detour(&r->obst, cfg, &st->odo, flame_dir, reach, &free_mm);
+    ffr_obst_record(&r->obst, cfg, &st->odo, &st->ir_geom, st->ir_mm);
+    ffr_obst_trail(&r->obst, &st->odo, 0);
     /* beside a wall with the flame already within the fans' reach: stop
      * here rather than creep on along the wall; a part reading long
      * lets a front corner reach the wall before the guard stops it */
@@ -322,6 +404,15 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
         return RP_SCAN;
     }
     st->cmd_v_mm_s = ffr_proximity_speed(cfg, st->ir_mm, cfg->approach_speed_mm_s);
+    if (detour != 0.0f) {
+        /* around an obstacle: the flame's heading offset by the detour, and
+         * slower while the corridor is not yet clear */
+        float v = ffr_stopping_speed(free_mm, st->cmd_v_mm_s);
+        st->cmd_v_mm_s = v < st->cmd_v_mm_s ? v : st->cmd_v_mm_s;
+        st->cmd_w_rad_s = ffr_clampf(cfg->heading_kp * (bal * cfg->flame_steer_deg * FFR_DEG + detour) + guard_w,
+                                     -cfg->turn_rate_deg_s * FFR_DEG, cfg->turn_rate_deg_s * FFR_DEG);
+        return RP_STAY;
+    }
     st->cmd_w_rad_s = ffr_clampf(cfg->heading_kp * bal * cfg->flame_steer_deg * FFR_DEG + guard_w,
                                  -cfg->turn_rate_deg_s * FFR_DEG, cfg->turn_rate_deg_s * FFR_DEG);
     return RP_STAY;
@@ -399,13 +490,55 @@ static uint8_t on_back_turn(ffr_state_t *st, room_tick_t *t)
 
 static uint8_t on_back_drive(ffr_state_t *st, room_tick_t *t)
 {
-    const ffr_room_state_t *r = &st->room;
-    float dx = r->scan_x_mm - st->odo.x_mm;
-    float dy = r->scan_y_mm - st->odo.y_mm;
+    ffr_room_state_t *r = &st->room;
+    /* back the way the approach came: through the points where it turned
+     * (last first), then to the scan point */
+    uint8_t via = r->obst.n_via;
+    float tx = via ? (float)r->obst.via_x_mm[via - 1u] : r->scan_x_mm;
+    float ty = via ? (float)r->obst.via_y_mm[via - 1u] : r->scan_y_mm;
+    float dx = tx - st->odo.x_mm;
+    float dy = ty - st->odo.y_mm;
     float dist = ffr_sqrtf(dx * dx + dy * dy);
     float behind = -(dx * ffr_cosf(st->odo.heading_rad) + dy * ffr_sinf(st->odo.heading_rad));
     (void)t;
-    if (dist < BACK_AT_SCAN_MM || behind <= 0.0f) {
+    if (via && r->obst.retrace == 0u) {
+        /* the approach bent on its way here: back the way it came only if
+         * the straight way to the scan point has something the rangers saw
+         * in it (else straight, as ever) */
+        float sx = r->scan_x_mm - st->odo.x_mm, sy = r->scan_y_mm - st->odo.y_mm;
+        float sd = ffr_sqrtf(sx * sx + sy * sy);
+        float dir = ffr_atan2f(sy, sx);
+        float clear = ffr_obst_free_mm(&r->obst, &st->cfg, st->odo.x_mm, st->odo.y_mm, dir, dir + 0.5f * FFR_PI, sd,
+                                       NULL);
+        r->obst.retrace = clear < sd ? 1u : 2u;
+    }
+    if (r->obst.retrace == 2u) {
+        via = 0u;
+        r->obst.n_via = 0u;
+        tx = r->scan_x_mm;
+        ty = r->scan_y_mm;
+        dx = tx - st->odo.x_mm;
+        dy = ty - st->odo.y_mm;
+        dist = ffr_sqrtf(dx * dx + dy * dy);
+        behind = -(dx * ffr_cosf(st->odo.heading_rad) + dy * ffr_sinf(st->odo.heading_rad));
+    }
+    if (r->obst.retrace == 1u) {
+        /* the point to back to may be off to a side: reached only when near,
+         * and the tail turned toward it first */
+        float tail = closest(st->odo.heading_rad, ffr_atan2f(-dy, -dx));
+        if (dist < BACK_AT_SCAN_MM || (behind <= 0.0f && dist < BACK_VIA_PASSED_MM)) {
+            if (via) {
+                r->obst.n_via = (uint8_t)(via - 1u);
+                return RP_STAY;
+            }
+            ffr_stop(st);
+            return RP_LEAVE_TURN;
+        }
+        if (ffr_absf(tail - st->odo.heading_rad) > BACK_TURN_FIRST_DEG * FFR_DEG) {
+            (void)turn_to(st, tail);
+            return RP_STAY;
+        }
+    } else if (dist < BACK_AT_SCAN_MM || behind <= 0.0f) {
         ffr_stop(st);
         return RP_LEAVE_TURN;
     }
@@ -436,7 +569,7 @@ static uint8_t on_leave_line(ffr_state_t *st, room_tick_t *t)
     if (st->lines.edge) {
         st->flags &= (uint8_t)~FFR_FLAG_IN_ROOM;
         next = RP_LEAVE_OUT;
-    } else if (t->moved > cfg->room_line_max_mm + cfg->room_entry_mm) {
+    } else if (t->moved > cfg->room_line_max_mm + cfg->room_entry_mm + (float)st->room.deeper_mm) {
         ffr_fail(st, FFR_FAIL_NO_LINE);
         return RP_STAY;
     }
@@ -458,13 +591,45 @@ static uint8_t on_leave_out(ffr_state_t *st, room_tick_t *t)
     return RP_STAY;
 }
 
+/* The scan from the door found no flame, but one was seen driving in (a
+ * piece of furniture hides it from the scan point): drive on along the entry
+ * heading, up to DEEPER_MM, and scan again there. It stops sooner at a line
+ * (a candle circle), a wall ahead, or where going on would bring something
+ * the rangers saw inside the circle the scan's turn in place sweeps. The
+ * way out is then straight back along the same line. */
+static uint8_t on_deeper(ffr_state_t *st, room_tick_t *t)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    ffr_room_state_t *r = &st->room;
+    float need = ffr_sqrtf(cfg->body_front_mm * cfg->body_front_mm + cfg->body_half_width_mm * cfg->body_half_width_mm)
+                 + DEEPER_CLEAR_MARGIN_MM;
+    float heading = closest(st->odo.heading_rad, r->entry_heading_rad);
+    float ax = st->odo.x_mm + 2.0f * AVOID_STEP_AHEAD_MM * ffr_cosf(heading);
+    float ay = st->odo.y_mm + 2.0f * AVOID_STEP_AHEAD_MM * ffr_sinf(heading);
+    float near_ahead, near_here;
+    ffr_obst_record(&r->obst, cfg, &st->odo, &st->ir_geom, st->ir_mm);
+    near_here = ffr_obst_nearest_mm(&r->obst, st->odo.x_mm, st->odo.y_mm, need);
+    near_ahead = ffr_obst_nearest_mm(&r->obst, ax, ay, need);
+    if (t->moved >= DEEPER_MM || st->lines.edge || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm
+        || (near_ahead < need && near_ahead < near_here - DEEPER_CLOSING_MM)) {
+        ffr_stop(st);
+        r->scan_x_mm = st->odo.x_mm;
+        r->scan_y_mm = st->odo.y_mm;
+        r->deeper_mm = (int16_t)t->moved;
+        return RP_SCAN;
+    }
+    ffr_drive_heading(st, heading, ffr_stopping_speed(DEEPER_MM - t->moved, cfg->room_speed_mm_s));
+    return RP_STAY;
+}
+
 /* ---- the dispatcher ----------------------------------------------------- */
 
 ffr_room_result_t ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
 {
     static const room_handler_t handlers[RP_COUNT] = {
         on_enter_line, on_enter_in,  on_scan,       on_turn_best,  on_approach,   on_extinguish,
-        on_verify,     on_back_turn, on_back_drive, on_leave_turn, on_leave_line, on_leave_out};
+        on_verify,     on_back_turn, on_back_drive, on_leave_turn, on_leave_line, on_leave_out,
+        on_deeper};
     ffr_room_state_t *r = &st->room;
     room_tick_t t;
     uint8_t next;

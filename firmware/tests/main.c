@@ -14,7 +14,8 @@ static const unit_suite_t *const k_suites[] = {
     &suite_wall_follow,    &suite_wall_cases,       &suite_wall_calibration, &suite_wall_direction,
     &suite_line_counter,   &suite_openings,         &suite_mission,        &suite_layout,
     &suite_robustness,     &suite_home_orient,      &suite_turn_calibration, &suite_turn_room,
-    &suite_room_guards,    &suite_room,             &suite_explore,
+    &suite_room_guards,    &suite_room,             &suite_obstacle_avoid,
+    &suite_explore,
 };
 
 TEST(a_check_that_fails_on_purpose) { CHECK(1 + 1 == 3); }

@@ -106,5 +106,6 @@ extern const unit_suite_t suite_turn_calibration;
 extern const unit_suite_t suite_turn_room;
 extern const unit_suite_t suite_room_guards;
 extern const unit_suite_t suite_room;
+extern const unit_suite_t suite_obstacle_avoid;
 extern const unit_suite_t suite_explore;
 #endif
