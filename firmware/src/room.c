@@ -92,7 +92,8 @@ enum { FOUND = 1, FOUND_BY_STRENGTH = 2, FOUND_CLOSER = 3, FOUND_BY_GUARD = 4, F
 #ifndef CREEP_MM
 #define CREEP_MM 80.0f
 #endif
-/* chosen: the creep's speed (mm/s), slow enough for the rangers' stop */
+/* chosen: the creep's speed (mm/s), a third of the approach's: the guard's
+ * steering acts within a few mm */
 #ifndef CREEP_SPEED_MM_S
 #define CREEP_SPEED_MM_S 60.0f
 #endif
@@ -303,9 +304,9 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
     float guard_w;
     int front_stop;
     if (creep) {
-        /* creeping on after a failed fan try: the rangers' walls stop it, the
-         * door's wall (known by odometry alone, a few cm off on slipping
-         * tracks) only steers it; at most CREEP_MM */
+        /* creeping on after a failed fan try: the rangers steer it off walls
+         * (and stop it, as in the approach); the door's wall, known by
+         * odometry alone (a few cm off on slipping tracks), only steers it */
         int door_stop = 0;
         guard_w = ffr_ranger_guard(st, &guard_stop, &guard_near);
         guard_w += ffr_door_wall_guard(st, &df, bal, &door_stop);
@@ -316,6 +317,7 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
      * here rather than creep on along the wall; a part reading long
      * lets a front corner reach the wall before the guard stops it */
     int reach_stop = 0;
+    int creep_end = 0;
     if (sig >= FLAME_NEAR * cfg->flame_detect) {
         r->flame_near = 1;
     }
@@ -323,7 +325,13 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
         reach_stop = 1;
     }
     front_stop = ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm;
-    if (st->lines.edge || guard_stop || reach_stop || front_stop || (creep && t->moved >= CREEP_MM)) {
+    /* a creep ends at its length, or with the nose at the doorway it came
+     * in by: the flame is in this room (seen near, the fans tried), so the
+     * fans go on there instead of backing out */
+    if (creep && (t->moved >= CREEP_MM || ffr_nose_in_doorway(st, &df))) {
+        creep_end = 1;
+    }
+    if (st->lines.edge || guard_stop || reach_stop || front_stop || creep_end) {
         ffr_stop(st);
         /* stopped by the flame's strength alone (nothing else stops it
          * here): if the fans do not put it out, it was farther than its
@@ -332,12 +340,12 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
          * length): if the fans do not put it out, it creeps on. */
         if (reach_stop && !st->lines.edge) {
             r->flame_found = FOUND_BY_STRENGTH;
-        } else if (!st->lines.edge && !front_stop && (creep ? !guard_stop : guard_stop)) {
+        } else if (!st->lines.edge && !front_stop && (creep ? t->moved >= CREEP_MM && !guard_stop : guard_stop)) {
             r->flame_found = FOUND_BY_GUARD;
         } else {
             r->flame_found = FOUND;
         }
-        if (ffr_nose_in_doorway(st, &df) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
+        if ((!creep && ffr_nose_in_doorway(st, &df)) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
             /* at the doorway it came in by, or stopped by a wall with the
              * flame still far: the flame is not in this room but seen
              * through its door. Back out and search on. */
