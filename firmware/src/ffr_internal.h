@@ -240,6 +240,9 @@ int ffr_nose_in_doorway(const ffr_state_t *st, const ffr_door_frame_t *f);
  * as a front corner nears its line, *stop set when one reaches it; bal is the
  * flame's balance (+ left), the push kept small when it would lose the flame. */
 float ffr_door_wall_guard(const ffr_state_t *st, const ffr_door_frame_t *f, float bal, int *stop);
+/* The rangers' walls by the front half alone (the approach guard without the
+ * door's wall): a yaw rate away from them, *stop and *near as below. */
+float ffr_ranger_guard(const ffr_state_t *st, int *stop, int *near);
 /* The approach's guard: the rangers' walls by the front half and the door's
  * wall. A yaw rate away from them; *stop: a front corner about to touch one;
  * *near: a wall beside the front half. */

@@ -24,6 +24,7 @@
  *   APPROACH --stopped, flame near--> EXTINGUISH;  --at the door / flame far--> BACK_DRIVE
  *   APPROACH --flame lost--> SCAN
  *   EXTINGUISH --out for flame_out_confirm_ms--> VERIFY;  --timeout--> EXTINGUISH,
+ *              APPROACH as a creep (stopped by the wall guard alone, CREEP_MM),
  *              APPROACH (stopped by strength alone) or failed (not out)
  *   VERIFY --stays out verify_ms--> BACK_TURN --> BACK_DRIVE --> LEAVE_TURN;  --back--> EXTINGUISH
  *   LEAVE_TURN --facing out--> LEAVE_LINE --line--> LEAVE_OUT --out--> (left)
@@ -123,8 +124,21 @@ enum {
  * wall, not back to the door) */
 #define GRID_AHEAD_MM 200.0f
 /* room_state_t.flame_found: none, found, and found with the approach stopped
- * by the flame's strength (FLAME_REACH) beside a wall, then going closer */
-enum { FOUND = 1, FOUND_BY_STRENGTH = 2, FOUND_CLOSER = 3 };
+ * by the flame's strength (FLAME_REACH) beside a wall, then going closer;
+ * found with the approach stopped by the wall guard alone (FOUND_BY_GUARD),
+ * then creeping on (FOUND_CREEP) after a failed try of the fans */
+enum { FOUND = 1, FOUND_BY_STRENGTH = 2, FOUND_CLOSER = 3, FOUND_BY_GUARD = 4, FOUND_CREEP = 5 };
+/* chosen: a creep after a failed fan try beside a wall goes at most this far
+ * (mm): the traced stops left the flame 33-38 cm from the fans' outlet, 3-8 cm
+ * beyond their 30 cm reach */
+#ifndef CREEP_MM
+#define CREEP_MM 80.0f
+#endif
+/* chosen: the creep's speed (mm/s), a third of the approach's: the guard's
+ * steering acts within a few mm */
+#ifndef CREEP_SPEED_MM_S
+#define CREEP_SPEED_MM_S 60.0f
+#endif
 
 /* flame_detect and flame_out are set for this dark level (2 x 40 counts) */
 #define FLAME_DARK_NOMINAL 80.0f
@@ -358,12 +372,25 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
     float bal = ((float)in->flame[0] - (float)in->flame[1]) / (sig > BAL_MIN_SUM ? sig : BAL_MIN_SUM);
     int guard_stop, guard_near;
     const ffr_door_frame_t df = ffr_door_frame(st);
-    float guard_w = ffr_approach_guard(st, &df, bal, &guard_stop, &guard_near);
+    const int creep = r->flame_found == FOUND_CREEP;
+    float guard_w;
+    int front_stop;
+    if (creep) {
+        /* creeping on after a failed fan try: the rangers steer it off walls
+         * (and stop it, as in the approach); the door's wall, known by
+         * odometry alone (a few cm off on slipping tracks), only steers it */
+        int door_stop = 0;
+        guard_w = ffr_ranger_guard(st, &guard_stop, &guard_near);
+        guard_w += ffr_door_wall_guard(st, &df, bal, &door_stop);
+    } else {
+        guard_w = ffr_approach_guard(st, &df, bal, &guard_stop, &guard_near);
+    }
     float flame_dir = st->odo.heading_rad + bal * cfg->flame_steer_deg * FFR_DEG;
     float free_mm;
-    /* near the flame (or going closer after the fans) the guards alone, as
-     * without furniture: the candle's own base is then in the corridor */
-    float reach = (sig >= FLAME_NEAR * cfg->flame_detect || r->flame_near || r->flame_found == FOUND_CLOSER)
+    /* near the flame (or going closer or creeping on after the fans) the
+     * guards alone, as without furniture: the candle's own base is then in
+     * the corridor */
+    float reach = (sig >= FLAME_NEAR * cfg->flame_detect || r->flame_near || r->flame_found == FOUND_CLOSER || creep)
                       ? 0.0f
                       : avoid_reach(st, sig);
     float detour = ffr_obst_detour(&r->obst, cfg, &st->odo, flame_dir, reach, &free_mm);
@@ -373,20 +400,35 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
      * here rather than creep on along the wall; a part reading long
      * lets a front corner reach the wall before the guard stops it */
     int reach_stop = 0;
+    int creep_end = 0;
     if (sig >= FLAME_NEAR * cfg->flame_detect) {
         r->flame_near = 1;
     }
-    if (guard_near && sig >= FLAME_REACH * cfg->flame_detect && r->flame_found != FOUND_CLOSER && !guard_stop) {
+    if (guard_near && sig >= FLAME_REACH * cfg->flame_detect && r->flame_found != FOUND_CLOSER && !creep && !guard_stop) {
         reach_stop = 1;
     }
-    if (st->lines.edge || guard_stop || reach_stop || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
+    front_stop = ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm;
+    /* a creep ends at its length, or with the nose at the doorway it came
+     * in by: the flame is in this room (seen near, the fans tried), so the
+     * fans go on there instead of backing out */
+    if (creep && (t->moved >= CREEP_MM || ffr_nose_in_doorway(st, &df))) {
+        creep_end = 1;
+    }
+    if (st->lines.edge || guard_stop || reach_stop || front_stop || creep_end) {
         ffr_stop(st);
         /* stopped by the flame's strength alone (nothing else stops it
          * here): if the fans do not put it out, it was farther than its
          * strength said -- flames differ in size -- and the robot goes
-         * closer */
-        r->flame_found = (reach_stop && !st->lines.edge) ? FOUND_BY_STRENGTH : FOUND;
-        if (ffr_nose_in_doorway(st, &df) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
+         * closer. Stopped by the wall guard alone (or a creep by its
+         * length): if the fans do not put it out, it creeps on. */
+        if (reach_stop && !st->lines.edge) {
+            r->flame_found = FOUND_BY_STRENGTH;
+        } else if (!st->lines.edge && !front_stop && (creep ? t->moved >= CREEP_MM && !guard_stop : guard_stop)) {
+            r->flame_found = FOUND_BY_GUARD;
+        } else {
+            r->flame_found = FOUND;
+        }
+        if ((!creep && ffr_nose_in_doorway(st, &df)) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
             /* at the doorway it came in by, or stopped by a wall with the
              * flame still far: the flame is not in this room but seen
              * through its door. Back out and search on. */
@@ -403,7 +445,7 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
         }
         return RP_SCAN;
     }
-    st->cmd_v_mm_s = ffr_proximity_speed(cfg, st->ir_mm, cfg->approach_speed_mm_s);
+    st->cmd_v_mm_s = ffr_proximity_speed(cfg, st->ir_mm, creep ? CREEP_SPEED_MM_S : cfg->approach_speed_mm_s);
     if (detour != 0.0f) {
         /* around an obstacle: the flame's heading offset by the detour, and
          * slower while the corridor is not yet clear */
@@ -455,6 +497,14 @@ static uint8_t on_extinguish(ffr_state_t *st, room_tick_t *t)
              * toward it until the line, a wall or the candle stops the
              * robot, then the fans again */
             r->flame_found = FOUND_CLOSER;
+            st->fan = 0;
+            next = RP_APPROACH;
+        } else if (next == RP_EXTINGUISH && r->flame_found == FOUND_BY_GUARD) {
+            /* not out from where the wall guard stopped the approach: the
+             * flame hugs that wall, a few cm beyond the fans' reach or at the
+             * edge of their cone. Creep on, steering by the flame's balance,
+             * the rangers' stop kept, then the fans again */
+            r->flame_found = FOUND_CREEP;
             st->fan = 0;
             next = RP_APPROACH;
         }

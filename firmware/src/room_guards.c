@@ -124,17 +124,16 @@ float ffr_door_wall_guard(const ffr_state_t *st, const ffr_door_frame_t *f, floa
 }
 
 /*
- * Approach guard: the rangers' hit points near the body. Returns a yaw rate
+ * The rangers' part of the approach guard: their hit points near the body. Returns a yaw rate
  * that steers away from a wall beside the front half, and sets *stop when a
  * wall is about to touch a front corner. The GP2D12 folds back under 10 cm,
  * so this must act while the wall is still seen, not at contact.
  */
-float ffr_approach_guard(const ffr_state_t *st, const ffr_door_frame_t *f, float bal, int *stop, int *near)
+float ffr_ranger_guard(const ffr_state_t *st, int *stop, int *near)
 {
     const ffr_config_t *cfg = &st->cfg;
     static const int rangers[3] = {FFR_IR_CF, FFR_IR_LF, FFR_IR_RF};
     float w = 0.0f;
-    float wd;
     int k;
     *stop = 0;
     *near = 0;
@@ -160,7 +159,13 @@ float ffr_approach_guard(const ffr_state_t *st, const ffr_door_frame_t *f, float
             }
         }
     }
-    wd = ffr_door_wall_guard(st, f, bal, stop);
+    return w;
+}
+
+float ffr_approach_guard(const ffr_state_t *st, const ffr_door_frame_t *f, float bal, int *stop, int *near)
+{
+    float w = ffr_ranger_guard(st, stop, near);
+    float wd = ffr_door_wall_guard(st, f, bal, stop);
     if (wd != 0.0f) {
         *near = 1;
     }

@@ -311,6 +311,101 @@ TEST(flame_dark_level_is_learned)
     CHECK(r.st.flame_dark > 132.0f && r.st.flame_dark <= 140.0f); /* low by at most the noise */
 }
 
+/* Tick while the firmware is in `state`, the flame at `flame_deg` as in
+ * approach_flame; returns the ticks run. */
+static int hold_flame(rig_t *r, uint8_t state, float flame_deg, float peak, int max_ticks)
+{
+    int i;
+    for (i = 0; i < max_ticks && r->out.state == state; ++i) {
+        float off = flame_deg - r->st.odo.heading_rad / FFR_DEG;
+        float left = peak * ffr_clampf(0.5f + off / 40.0f, 0.0f, 1.0f);
+        r->in.flame[0] = (uint16_t)left;
+        r->in.flame[1] = (uint16_t)(peak - left);
+        rig_tick(r);
+    }
+    return i;
+}
+
+/* An approach stopped by the wall guard alone (the door's wall) whose fans
+ * do not put the flame out creeps on, slowly and at most 80 mm (CREEP_MM),
+ * then the fans again; the tries stay bounded by fan_attempts. Over the
+ * flame's bearings toward the door wall and its strengths. */
+TEST(a_flame_not_out_beside_the_wall_guard_is_crept_toward)
+{
+    static const float bearings[] = {110.0f, 120.0f, 130.0f};
+    static const float peaks[] = {700.0f, 900.0f, 1100.0f}; /* x 2 below FLAME_REACH */
+    unsigned b, p;
+    for (b = 0; b < 3; ++b) {
+        for (p = 0; p < 3; ++p) {
+            ffr_config_t cfg;
+            rig_t r;
+            float d0, v_max = 0.0f;
+            int i, tries = 1;
+            enter_and_scan(&r, &cfg, bearings[b], peaks[p]);
+            approach_flame(&r, r.st.odo.heading_rad / FFR_DEG, peaks[p], 600);
+            CHECK(r.out.state == FFR_ST_EXTINGUISH); /* stopped by the door wall's guard */
+            /* the flame stays lit for one attempt's fan time: on toward it */
+            hold_flame(&r, FFR_ST_EXTINGUISH, bearings[b], peaks[p], (int)(cfg.fan_timeout_ms / 10u) + 10);
+            CHECK(r.out.state == FFR_ST_APPROACH && r.out.fan == 0);
+            d0 = r.st.odo.dist_mm;
+            for (i = 0; i < 400 && r.out.state == FFR_ST_APPROACH; ++i) {
+                hold_flame(&r, FFR_ST_APPROACH, bearings[b], peaks[p], 1);
+                if (r.st.cmd_v_mm_s > v_max) {
+                    v_max = r.st.cmd_v_mm_s;
+                }
+            }
+            /* a creep: it drove on, slowly, no farther than its bound */
+            hold_flame(&r, FFR_ST_EXTINGUISH, bearings[b], peaks[p], 1);
+            CHECK(r.out.state == FFR_ST_EXTINGUISH && r.out.fan == 1);
+            CHECK(r.st.odo.dist_mm - d0 > 40.0f && r.st.odo.dist_mm - d0 < 80.0f + 15.0f);
+            CHECK(v_max > 0.0f && v_max <= 60.0f + 0.5f && v_max < cfg.approach_speed_mm_s);
+            /* never lit out: bounded tries, then "not out" */
+            while (r.out.state != FFR_ST_FAILED && tries < 10) {
+                int n = hold_flame(&r, r.out.state, bearings[b], peaks[p], (int)(cfg.fan_timeout_ms / 10u) + 400);
+                CHECK(n > 0);
+                if (r.out.state == FFR_ST_EXTINGUISH || r.out.state == FFR_ST_FAILED) {
+                    tries++;
+                }
+            }
+            CHECK(r.out.state == FFR_ST_FAILED && r.out.fail_code == FFR_FAIL_NOT_OUT);
+            CHECK(r.out.fan == 0);
+        }
+    }
+}
+
+/* A creep that brings the nose to the doorway it came in by stops there and
+ * the fans go on: the flame was seen near and tried, it is in this room (an
+ * approach, not a creep, reaching the doorway backs out). Over flames far
+ * back toward the door wall. */
+TEST(a_creep_to_the_doorway_keeps_the_fans_on)
+{
+    static const float bearings[] = {130.0f, 135.0f, 140.0f};
+    unsigned b;
+    for (b = 0; b < 3; ++b) {
+        ffr_config_t cfg;
+        rig_t r;
+        int i, at_door = 0, backed_out = 0;
+        enter_and_scan(&r, &cfg, bearings[b], 1000.0f);
+        approach_flame(&r, r.st.odo.heading_rad / FFR_DEG, 1000.0f, 600);
+        CHECK(r.out.state == FFR_ST_EXTINGUISH);
+        for (i = 0; i < 4000 && r.out.state != FFR_ST_FAILED; ++i) {
+            ffr_door_frame_t df;
+            uint8_t was = r.out.state;
+            hold_flame(&r, r.out.state, bearings[b], 1000.0f, 1);
+            df = ffr_door_frame(&r.st);
+            if (was == FFR_ST_APPROACH && ffr_nose_in_doorway(&r.st, &df)) {
+                at_door = 1; /* the creep got there */
+            }
+            if (r.out.state == FFR_ST_TO_DOOR) {
+                backed_out = 1;
+            }
+        }
+        CHECK(at_door);
+        CHECK(!backed_out);
+        CHECK(r.out.state == FFR_ST_FAILED && r.out.fail_code == FFR_FAIL_NOT_OUT);
+    }
+}
+
 SUITE(robustness,
       TEST_REF(leaving_a_room_steers_a_front_corner_off_a_wall),
       TEST_REF(a_flame_reflection_in_a_near_wall_does_not_end_the_scan),
@@ -320,4 +415,6 @@ SUITE(robustness,
       TEST_REF(far_hits_are_not_the_wall),
       TEST_REF(one_ranger_keeps_heading_feedback),
       TEST_REF(door_wall_guard_stops_by_the_jamb),
-      TEST_REF(flame_beyond_the_door_is_left_alone));
+      TEST_REF(flame_beyond_the_door_is_left_alone),
+      TEST_REF(a_flame_not_out_beside_the_wall_guard_is_crept_toward),
+      TEST_REF(a_creep_to_the_doorway_keeps_the_fans_on));
