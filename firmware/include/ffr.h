@@ -321,6 +321,10 @@ typedef struct {
     uint8_t flame_near;            /* the approach has seen the flame near (room.c FLAME_NEAR) */
     uint8_t reserved[3];
     ffr_scan_square_t square;      /* the walls seen in the scan (turn_calibration.c) */
+    float ahead_min_mm;            /* the approach's nearest front ranger reading so far (room_entry.c) */
+    float ahead_min_at_mm;         /* odometry's distance driven when it was read */
+    uint8_t scan_trail;            /* the scan began with the flame on its trailing side (room_entry.c) */
+    uint8_t reserved_entry[3];
 } ffr_room_state_t;
 
 /* The rangers' geometry in the body frame (x ahead, y left; ir_calibration.c):

@@ -78,6 +78,14 @@ enum {
 /* counts: the flame's balance is taken over at least this sum (no division
  * by a sum near zero) */
 #define BAL_MIN_SUM 1.0f
+/* room_state_t.scan_trail before the scan's first tick */
+#define SCAN_TRAIL_UNKNOWN 2u
+/* chosen: a scan begun with the flame on its trailing side (room_entry.c)
+ * has passed no peak while its best is still within this of its start */
+#define SCAN_TRAIL_RAD (10.0f * FFR_DEG)
+/* chosen: on the way out, the line sensor this far (mm) beyond the doorway
+ * line met on the way in (odometry) has crossed it unseen */
+#define LEAVE_PAST_MM 30.0f
 /* backing out, the scan point reached within this (mm) */
 #define BACK_AT_SCAN_MM 15.0f
 /* room_state_t.flame_found: none, found, and found with the approach stopped
@@ -121,6 +129,10 @@ static void enter(ffr_state_t *st, uint8_t p)
         r->best_heading_rad = st->odo.heading_rad;
         r->best_front_mm = 0.0f;
         ffr_scan_sq_reset(&r->square);
+        r->scan_trail = SCAN_TRAIL_UNKNOWN;
+    }
+    if (p == RP_APPROACH) {
+        ffr_ahead_reset(r);
     }
     r->phase = p;
     r->phase_start_mm = st->odo.dist_mm;
@@ -139,6 +151,9 @@ void ffr_room_begin(ffr_state_t *st, uint8_t room, float entry_heading_rad)
     st->room.exit_heading_rad = entry_heading_rad;
     st->room.lost_since_ms = 0u;
     st->room.flame_near = 0;
+    st->room.scan_trail = 0;
+    st->room.reserved_entry[0] = st->room.reserved_entry[1] = st->room.reserved_entry[2] = 0;
+    ffr_ahead_reset(&st->room);
     enter(st, RP_ENTER_LINE);
 }
 
@@ -235,6 +250,10 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
     if (ffr_through_door(st, st->odo.heading_rad)) {
         sig = 0.0f; /* a flame out there is not this room's */
     }
+    if (r->scan_trail == SCAN_TRAIL_UNKNOWN) {
+        /* its first reading: the tail of a flame behind the way it turns? */
+        r->scan_trail = (uint8_t)ffr_scan_starts_trailing(cfg, dir, (float)t->in->flame[0], (float)t->in->flame[1], sig);
+    }
     if (sig > r->best_signal) {
         r->best_signal = sig;
         r->best_heading_rad = st->odo.heading_rad;
@@ -246,7 +265,8 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
      * the flame itself is still behind. Then the whole turn, and the
      * strongest. */
     if (r->best_signal >= cfg->flame_detect && sig < SCAN_PAST_PEAK * r->best_signal
-        && (r->best_signal >= SCAN_SURE * cfg->flame_detect || r->best_front_mm > SCAN_WALL_MM)) {
+        && (r->best_signal >= SCAN_SURE * cfg->flame_detect || r->best_front_mm > SCAN_WALL_MM)
+        && !(r->scan_trail && ffr_absf(r->best_heading_rad - r->start_heading_rad) < SCAN_TRAIL_RAD)) {
         return flame_found(st);
     }
     if (turned >= SCAN_FULL_TURN_RAD) {
@@ -291,13 +311,16 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
      * here rather than creep on along the wall; a part reading long
      * lets a front corner reach the wall before the guard stops it */
     int reach_stop = 0;
+    /* the candle's base at the fans' reach ahead, told by the front ranger
+     * (a candle beside the door: the approach may begin inside its circle) */
+    int ahead = ffr_ahead_at_reach(cfg, r, st->ir_mm[FFR_IR_CF], st->odo.dist_mm, sig);
     if (sig >= FLAME_NEAR * cfg->flame_detect) {
         r->flame_near = 1;
     }
     if (guard_near && sig >= FLAME_REACH * cfg->flame_detect && r->flame_found != FOUND_CLOSER && !guard_stop) {
         reach_stop = 1;
     }
-    if (st->lines.edge || guard_stop || reach_stop || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
+    if (st->lines.edge || guard_stop || reach_stop || ahead || ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm) {
         ffr_stop(st);
         /* stopped by the flame's strength alone (nothing else stops it
          * here): if the fans do not put it out, it was farther than its
@@ -433,7 +456,9 @@ static uint8_t on_leave_line(ffr_state_t *st, room_tick_t *t)
 {
     const ffr_config_t *cfg = &st->cfg;
     uint8_t next = RP_STAY;
-    if (st->lines.edge) {
+    /* or the line sensor already beyond the doorway line, facing out from a
+     * scan point near the door: it crossed the line while turning */
+    if (st->lines.edge || ffr_leave_past_line_mm(st) > LEAVE_PAST_MM) {
         st->flags &= (uint8_t)~FFR_FLAG_IN_ROOM;
         next = RP_LEAVE_OUT;
     } else if (t->moved > cfg->room_line_max_mm + cfg->room_entry_mm) {

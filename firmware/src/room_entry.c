@@ -1,0 +1,84 @@
+/*
+ * A candle beside the door the robot came in by (issue 13, doorcandle).
+ *
+ * The 2001 plan's rule lets a candle circle reach the doorway line, so the
+ * entry can end with the candle beside the robot or already under its nose:
+ *
+ * - The scan then may begin just past the flame: its first reading is the
+ *   tail of a flame behind the scan's way of turning, and the signal only
+ *   falls. That fall is no peak passed; the flame sensors' balance at the
+ *   start tells which side the flame is on (ffr_scan_starts_trailing).
+ * - The approach may begin inside the candle circle: no line edge comes,
+ *   and the front ranger, nearer than its span, reads at its bottom and
+ *   then, nearer still, folds back (a GP2D12's output falls again below
+ *   ~8 cm) and reads far. Either, with the flame near, means the candle's
+ *   base stands at the fans' reach ahead (ffr_ahead_at_reach).
+ * - The scan point may lie so near the doorway line that, turned to face
+ *   out, the line sensor (ahead of the origin) is already past the line: it
+ *   meets no line on the way out. Odometry tells how far past the line met
+ *   on the way in it is (ffr_leave_past_line_mm).
+ */
+#include "ffr_internal.h"
+
+/* chosen: the balance (left - right over the sum) beyond which the flame is
+ * on one side; the sensors' views overlap straight ahead, where it is ~0 */
+#define TRAIL_BAL 0.25f
+/* the flame near, x flame_detect (room.c FLAME_NEAR) */
+#define AHEAD_FLAME_X 4.0f
+/* chosen: a reading up to this (mm off the ranger) is near enough to watch
+ * for the fold-back: folded, the candle's base 1-3 cm off the ranger read
+ * 150-240 mm in the 2001 arena's traces */
+#define AHEAD_WATCH_MM 200.0f
+/* chosen: the reading grown this much over its minimum... */
+#define AHEAD_GROW_MM 30.0f
+/* ...while the robot drove on at least this far since: folded back (noise
+ * at 10-20 cm is ~10 mm, datasheet profile) */
+#define AHEAD_MOVED_MM 10.0f
+/* no minimum yet */
+#define AHEAD_NONE 1.0e6f
+
+int ffr_scan_starts_trailing(const ffr_config_t *cfg, float dir, float left, float right, float sig)
+{
+    float bal;
+    if (sig < cfg->flame_detect) {
+        return 0; /* no flame to tell the side of */
+    }
+    bal = (left - right) / sig;
+    return dir * bal < -TRAIL_BAL;
+}
+
+void ffr_ahead_reset(ffr_room_state_t *r)
+{
+    r->ahead_min_mm = AHEAD_NONE;
+    r->ahead_min_at_mm = 0.0f;
+}
+
+int ffr_ahead_at_reach(const ffr_config_t *cfg, ffr_room_state_t *r, float ir_cf_mm, float dist_mm, float sig)
+{
+    int near;
+    if (!ffr_ir_valid(cfg, ir_cf_mm)) {
+        return 0;
+    }
+    near = sig >= AHEAD_FLAME_X * cfg->flame_detect;
+    if (ir_cf_mm < r->ahead_min_mm) {
+        r->ahead_min_mm = ir_cf_mm;
+        r->ahead_min_at_mm = dist_mm;
+    }
+    if (!near) {
+        return 0;
+    }
+    if (ir_cf_mm <= cfg->ir_min_mm + 0.5f) {
+        return 1; /* at the bottom of the span: within ~10 cm */
+    }
+    return r->ahead_min_mm <= AHEAD_WATCH_MM && ir_cf_mm >= r->ahead_min_mm + AHEAD_GROW_MM
+           && dist_mm - r->ahead_min_at_mm >= AHEAD_MOVED_MM;
+}
+
+float ffr_leave_past_line_mm(const ffr_state_t *st)
+{
+    const ffr_room_state_t *r = &st->room;
+    float h = st->odo.heading_rad;
+    float sx = st->odo.x_mm + st->cfg.line_sensor_x_mm * ffr_cosf(h);
+    float sy = st->odo.y_mm + st->cfg.line_sensor_x_mm * ffr_sinf(h);
+    return (sx - r->line_x_mm) * ffr_cosf(r->exit_heading_rad) + (sy - r->line_y_mm) * ffr_sinf(r->exit_heading_rad);
+}
