@@ -83,9 +83,6 @@ enum {
 /* chosen: a scan begun with the flame on its trailing side (room_entry.c)
  * has passed no peak while its best is still within this of its start */
 #define SCAN_TRAIL_RAD (10.0f * FFR_DEG)
-/* chosen: on the way out, the line sensor this far (mm) beyond the doorway
- * line met on the way in (odometry) has crossed it unseen */
-#define LEAVE_PAST_MM 30.0f
 /* backing out, the scan point reached within this (mm) */
 #define BACK_AT_SCAN_MM 15.0f
 /* room_state_t.flame_found: none, found, and found with the approach stopped
@@ -447,6 +444,12 @@ static uint8_t on_leave_turn(ffr_state_t *st, room_tick_t *t)
          * so later turns stay square to the walls */
         r->exit_heading_rad = target;
         t->result = FFR_ROOM_FACING_OUT;
+        if (ffr_leave_past_line_mm(st) >= 0.0f) {
+            /* facing out from a scan point near the door, the line sensor
+             * is already beyond the doorway line: it crossed it turning */
+            st->flags &= (uint8_t)~FFR_FLAG_IN_ROOM;
+            return RP_LEAVE_OUT;
+        }
         return RP_LEAVE_LINE;
     }
     return RP_STAY;
@@ -456,9 +459,7 @@ static uint8_t on_leave_line(ffr_state_t *st, room_tick_t *t)
 {
     const ffr_config_t *cfg = &st->cfg;
     uint8_t next = RP_STAY;
-    /* or the line sensor already beyond the doorway line, facing out from a
-     * scan point near the door: it crossed the line while turning */
-    if (st->lines.edge || ffr_leave_past_line_mm(st) > LEAVE_PAST_MM) {
+    if (st->lines.edge) {
         st->flags &= (uint8_t)~FFR_FLAG_IN_ROOM;
         next = RP_LEAVE_OUT;
     } else if (t->moved > cfg->room_line_max_mm + cfg->room_entry_mm) {
