@@ -323,6 +323,7 @@ typedef struct {
     ffr_scan_square_t square;      /* the walls seen in the scan (turn_calibration.c) */
     float ahead_min_mm;            /* the approach's nearest front ranger reading so far (room_entry.c) */
     float ahead_min_at_mm;         /* odometry's distance driven when it was read */
+    float entry_peak;              /* the entry's strongest flame signal so far (room_entry.c) */
     uint8_t scan_trail;            /* the scan began with the flame on its trailing side (room_entry.c) */
     uint8_t reserved_entry[3];
 } ffr_room_state_t;

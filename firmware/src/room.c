@@ -83,6 +83,10 @@ enum {
 /* chosen: a scan begun with the flame on its trailing side (room_entry.c)
  * has passed no peak while its best is still within this of its start */
 #define SCAN_TRAIL_RAD (10.0f * FFR_DEG)
+/* chosen: facing out, the line sensor this near (mm, along the way out)
+ * to the doorway line's middle, or past it, is on it (a line is 25.4 mm
+ * wide): no edge will come */
+#define LEAVE_ON_LINE_MM 25.0f
 /* backing out, the scan point reached within this (mm) */
 #define BACK_AT_SCAN_MM 15.0f
 /* room_state_t.flame_found: none, found, and found with the approach stopped
@@ -131,6 +135,9 @@ static void enter(ffr_state_t *st, uint8_t p)
     if (p == RP_APPROACH) {
         ffr_ahead_reset(r);
     }
+    if (p == RP_ENTER_IN) {
+        r->entry_peak = 0.0f;
+    }
     r->phase = p;
     r->phase_start_mm = st->odo.dist_mm;
     r->phase_start_ms = st->t_ms;
@@ -149,6 +156,7 @@ void ffr_room_begin(ffr_state_t *st, uint8_t room, float entry_heading_rad)
     st->room.lost_since_ms = 0u;
     st->room.flame_near = 0;
     st->room.scan_trail = 0;
+    st->room.entry_peak = 0.0f;
     st->room.reserved_entry[0] = st->room.reserved_entry[1] = st->room.reserved_entry[2] = 0;
     ffr_ahead_reset(&st->room);
     enter(st, RP_ENTER_LINE);
@@ -195,7 +203,9 @@ static uint8_t on_enter_in(ffr_state_t *st, room_tick_t *t)
     ffr_room_state_t *r = &st->room;
     /* deep enough that a candle along the door's wall can be approached
      * with room to spare; the candle circle or a wall ahead stops it sooner */
-    if (t->moved >= cfg->room_entry_mm || st->lines.edge || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
+    int passing = ffr_entry_passing_flame(cfg, &r->entry_peak, t->sig);
+    if (t->moved >= cfg->room_entry_mm || st->lines.edge || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm
+        || passing) {
         ffr_stop(st);
         r->scan_x_mm = st->odo.x_mm;
         r->scan_y_mm = st->odo.y_mm;
@@ -444,9 +454,10 @@ static uint8_t on_leave_turn(ffr_state_t *st, room_tick_t *t)
          * so later turns stay square to the walls */
         r->exit_heading_rad = target;
         t->result = FFR_ROOM_FACING_OUT;
-        if (ffr_leave_past_line_mm(st) >= 0.0f) {
+        if (ffr_leave_past_line_mm(st) >= -LEAVE_ON_LINE_MM) {
             /* facing out from a scan point near the door, the line sensor
-             * is already beyond the doorway line: it crossed it turning */
+             * is already on or beyond the doorway line: it crossed it
+             * turning, or no edge comes from the line under it */
             st->flags &= (uint8_t)~FFR_FLAG_IN_ROOM;
             return RP_LEAVE_OUT;
         }

@@ -4,6 +4,10 @@
  * The 2001 plan's rule lets a candle circle reach the doorway line, so the
  * entry can end with the candle beside the robot or already under its nose:
  *
+ * - The entry may drive past the candle: the flame, near, falls off its
+ *   peak as it leaves the sensors' view to the side; the entry ends there,
+ *   before the body comes alongside the candle and the scan's turn in place
+ *   sweeps a corner into it (ffr_entry_passing_flame).
  * - The scan then may begin just past the flame: its first reading is the
  *   tail of a flame behind the scan's way of turning, and the signal only
  *   falls. That fall is no peak passed; the flame sensors' balance at the
@@ -20,6 +24,10 @@
  */
 #include "ffr_internal.h"
 
+/* chosen: the entry's flame signal fallen below this share of its peak is
+ * passing by (the scan's own rule, room.c SCAN_PAST_PEAK, is 0.6: here the
+ * robot drives on toward the candle's side while it falls) */
+#define ENTRY_PAST_PEAK 0.8f
 /* chosen: the balance (left - right over the sum) beyond which the flame is
  * on one side; the sensors' views overlap straight ahead, where it is ~0 */
 #define TRAIL_BAL 0.25f
@@ -36,6 +44,14 @@
 #define AHEAD_MOVED_MM 10.0f
 /* no minimum yet */
 #define AHEAD_NONE 1.0e6f
+
+int ffr_entry_passing_flame(const ffr_config_t *cfg, float *peak, float sig)
+{
+    if (sig > *peak) {
+        *peak = sig;
+    }
+    return *peak >= AHEAD_FLAME_X * cfg->flame_detect && sig < ENTRY_PAST_PEAK * *peak;
+}
 
 int ffr_scan_starts_trailing(const ffr_config_t *cfg, float dir, float left, float right, float sig)
 {
