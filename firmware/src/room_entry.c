@@ -31,6 +31,9 @@
 /* chosen: the balance (left - right over the sum) beyond which the flame is
  * on one side; the sensors' views overlap straight ahead, where it is ~0 */
 #define TRAIL_BAL 0.25f
+/* chosen: the scan's first reading at least this (x flame_detect; room.c
+ * SCAN_SURE, no wall's reflection) for its side to count */
+#define TRAIL_SIG_X 2.0f
 /* the flame near, x flame_detect (room.c FLAME_NEAR) */
 #define AHEAD_FLAME_X 4.0f
 /* chosen: a reading up to this (mm off the ranger) is near enough to watch
@@ -56,8 +59,10 @@ int ffr_entry_passing_flame(const ffr_config_t *cfg, float *peak, float sig)
 int ffr_scan_starts_trailing(const ffr_config_t *cfg, float dir, float left, float right, float sig)
 {
     float bal;
-    if (sig < cfg->flame_detect) {
-        return 0; /* no flame to tell the side of */
+    if (sig < TRAIL_SIG_X * cfg->flame_detect) {
+        return 0; /* no flame near enough to matter: a far one at the side
+                   * the approach steers to by the balance (the 2004 arena's
+                   * room 4, table1: 1.4 x at the scan's start) */
     }
     bal = (left - right) / sig;
     return dir * bal < -TRAIL_BAL;
