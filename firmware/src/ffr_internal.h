@@ -253,7 +253,7 @@ float ffr_scan_room_offset(const ffr_state_t *st);
  * peak passed. dir: +1 the scan turns left (CCW), -1 right. */
 int ffr_scan_starts_trailing(const ffr_config_t *cfg, float dir, float left, float right, float sig);
 /* 1 when the entry drives past a near flame: its signal, once near (at
- * least 4 x flame_detect), has fallen off its peak (kept in *peak, 0 at the
+ * least 8 x flame_detect), has fallen off its peak (kept in *peak, 0 at the
  * entry's start) -- the flame leaves the sensors' view to the side, the
  * candle beside the robot's way in: the entry ends here, before the body
  * comes alongside it (the scan turns in place). */

@@ -25,9 +25,13 @@
 #include "ffr_internal.h"
 
 /* chosen: the entry's flame signal fallen below this share of its peak is
- * passing by (the scan's own rule, room.c SCAN_PAST_PEAK, is 0.6: here the
- * robot drives on toward the candle's side while it falls) */
-#define ENTRY_PAST_PEAK 0.8f
+ * passing by (the scan's own rule, room.c SCAN_PAST_PEAK): a flame's
+ * flicker (the realistic profile) moves it by 30 % at most in the traces */
+#define ENTRY_PAST_PEAK 0.6f
+/* chosen: ...a peak at least this strong (x flame_detect): the flame within
+ * the fans' reach (room.c: ~8 x at 30 cm at the edge of the sensors' view);
+ * a weaker one passed is left to the scan */
+#define ENTRY_NEAR_X 8.0f
 /* chosen: the balance (left - right over the sum) beyond which the flame is
  * on one side; the sensors' views overlap straight ahead, where it is ~0 */
 #define TRAIL_BAL 0.25f
@@ -53,7 +57,7 @@ int ffr_entry_passing_flame(const ffr_config_t *cfg, float *peak, float sig)
     if (sig > *peak) {
         *peak = sig;
     }
-    return *peak >= AHEAD_FLAME_X * cfg->flame_detect && sig < ENTRY_PAST_PEAK * *peak;
+    return *peak >= ENTRY_NEAR_X * cfg->flame_detect && sig < ENTRY_PAST_PEAK * *peak;
 }
 
 int ffr_scan_starts_trailing(const ffr_config_t *cfg, float dir, float left, float right, float sig)
