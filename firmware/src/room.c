@@ -87,6 +87,11 @@ enum {
  * to the doorway line's middle, or past it, is on it (a line is 25.4 mm
  * wide): no edge will come */
 #define LEAVE_ON_LINE_MM 25.0f
+/* chosen: ...and only after an entry that passed the flame near: its peak
+ * at least this (x flame_detect; the 2001 plan's candles beside the door:
+ * 8-13 x; a far flame at the side, 3 x, is left to the approach's steering
+ * as before, a full turn costing 2.4 s) */
+#define SCAN_TRAIL_ENTRY_X 6.0f
 /* backing out, the scan point reached within this (mm) */
 #define BACK_AT_SCAN_MM 15.0f
 /* room_state_t.flame_found: none, found, and found with the approach stopped
@@ -259,7 +264,9 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
     }
     if (r->scan_trail == SCAN_TRAIL_UNKNOWN) {
         /* its first reading: the tail of a flame behind the way it turns? */
-        r->scan_trail = (uint8_t)ffr_scan_starts_trailing(cfg, dir, (float)t->in->flame[0], (float)t->in->flame[1], sig);
+        r->scan_trail = (uint8_t)(r->entry_peak >= SCAN_TRAIL_ENTRY_X * cfg->flame_detect
+                                  && ffr_scan_starts_trailing(cfg, dir, (float)t->in->flame[0],
+                                                              (float)t->in->flame[1], sig));
     }
     if (sig > r->best_signal) {
         r->best_signal = sig;

@@ -334,22 +334,27 @@ TEST(a_front_ranger_folding_back_stops_the_approach)
 TEST(a_scan_begun_just_past_a_near_flame_turns_on_to_it)
 {
     /* the scan turns left; at its start a near flame reads strong on the
-     * right sensor only and fades as the turn goes on: no peak passed, the
-     * scan turns on (a far one, 1.5 x flame_detect, keeps the early stop) */
-    int near;
-    for (near = 0; near <= 1; ++near) {
+     * right sensor only and fades as the turn goes on: after an entry that
+     * passed the flame near (its peak 10 x flame_detect) that is no peak
+     * passed, the scan turns on. Without such an entry, or with the flame
+     * far at the start (1.5 x flame_detect), the early stop as before. */
+    static const uint16_t right[] = {700u, 700u, 275u};
+    static const float entry_x[] = {10.0f, 0.0f, 10.0f};
+    static const int turns_on[] = {1, 0, 0};
+    unsigned k;
+    for (k = 0; k < sizeof(right) / sizeof(right[0]); ++k) {
         ffr_config_t cfg;
         rig_t r;
         int i;
         float start;
-        uint16_t right = near ? 700u : 275u;
         ffr_config_default(&cfg);
         rig_room_route(&cfg, 0);
         CHECK(into_the_scan(&r, &cfg));
+        r.st.room.entry_peak = entry_x[k] * cfg.flame_detect;
         start = r.st.odo.heading_rad;
         for (i = 0; i < 400 && r.out.state == FFR_ST_SCAN; ++i) {
             float turned = (r.st.odo.heading_rad - start) / FFR_DEG;
-            float f = (float)right - ((float)right - (float)DARK) * turned / 30.0f;
+            float f = (float)right[k] - ((float)right[k] - (float)DARK) * turned / 30.0f;
             r.in.flame[0] = DARK;
             r.in.flame[1] = (uint16_t)(f < (float)DARK ? (float)DARK : f);
             rig_tick(&r);
@@ -357,7 +362,7 @@ TEST(a_scan_begun_just_past_a_near_flame_turns_on_to_it)
                 break;
             }
         }
-        if (near) {
+        if (turns_on[k]) {
             CHECK(r.out.state == FFR_ST_SCAN);
             CHECK((r.st.odo.heading_rad - start) / FFR_DEG > 90.0f);
         } else {
