@@ -342,13 +342,17 @@ typedef struct {
     float exit_heading_rad;        /* the way out of the door (route.c takes it as its heading reference) */
     uint32_t lost_since_ms;        /* the approached flame lost since (0: not lost) */
     uint8_t flame_near;            /* the approach has seen the flame near (room.c FLAME_NEAR) */
-    uint8_t reserved[3];
+    uint8_t scan_trail;            /* the scan began with the flame on its trailing side (room_entry.c) */
+    uint8_t reserved[2];
     ffr_scan_square_t square;      /* the walls seen in the scan (turn_calibration.c) */
     float entry_flame;             /* the strongest flame sum driving in (room.c) */
     int16_t deeper_mm;             /* how far the second scan point is beyond the first */
     uint8_t scans;                 /* scan points used in this room (1, or 2: deeper in) */
     uint8_t reserved2;
     ffr_obstacles_t obst;          /* the room's obstacles (obstacle_avoid.c)  */
+    float entry_peak;              /* the entry's strongest flame signal so far (room_entry.c) */
+    int16_t ahead_min_mm;          /* the approach's nearest front ranger reading so far (room_entry.c) */
+    int16_t ahead_min_at_mm;       /* odometry's distance driven in the approach when it was read */
 } ffr_room_state_t;
 
 /* The rangers' geometry in the body frame (x ahead, y left; ir_calibration.c):

@@ -282,6 +282,30 @@ void ffr_obst_trail(ffr_obstacles_t *o, const ffr_odometry_t *odo, int begin);
 /* The nearest marked cell's centre from (x, y), mm; radius_mm if none nearer. */
 float ffr_obst_nearest_mm(const ffr_obstacles_t *o, float x_mm, float y_mm, float radius_mm);
 
+/* room_entry.c: a candle near the door the robot came in by (issue 13,
+ * doorcandle). The scan's first signal is the tail of a flame behind the
+ * scan's way of turning when the flame sensors' balance (left - right over
+ * their sum) puts it on the trailing side: 1, and then a fall from it is no
+ * peak passed. dir: +1 the scan turns left (CCW), -1 right. */
+int ffr_scan_starts_trailing(const ffr_config_t *cfg, float dir, float left, float right, float sig);
+/* 1 when the entry drives past a near flame: its signal, once near (at
+ * least 8 x flame_detect), has fallen off its peak (kept in *peak, 0 at the
+ * entry's start) -- the flame leaves the sensors' view to the side, the
+ * candle beside the robot's way in: the entry ends here, before the body
+ * comes alongside it (the scan turns in place). */
+int ffr_entry_passing_flame(const ffr_config_t *cfg, float *peak, float sig);
+/* The approach's front ranger watch: reset at the approach's start. */
+void ffr_ahead_reset(ffr_room_state_t *r);
+/* 1 when an object stands at the fans' reach ahead: the front ranger at the
+ * bottom of its span, or reading farther again after a near reading while
+ * the robot drove on toward it (a GP2D12 folds back below ~8 cm). Only with
+ * the flame near (sig at least 4 x flame_detect, room.c FLAME_NEAR): a wall ahead
+ * with the flame far away is the guards' business. */
+int ffr_ahead_at_reach(const ffr_config_t *cfg, ffr_room_state_t *r, float ir_cf_mm, float dist_mm, float sig);
+/* how far (mm) the line sensor is past the doorway line met on the way in,
+ * along the way out (room.c exit_heading_rad); < 0: still inside */
+float ffr_leave_past_line_mm(const ffr_state_t *st);
+
 /* drive.c: corridor driving shared by the route steps. */
 void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed);
 /* A front corner's ranger seeing a wall beside the front half: the yaw

@@ -85,6 +85,20 @@ enum {
 /* counts: the flame's balance is taken over at least this sum (no division
  * by a sum near zero) */
 #define BAL_MIN_SUM 1.0f
+/* room_state_t.scan_trail before the scan's first tick */
+#define SCAN_TRAIL_UNKNOWN 2u
+/* chosen: a scan begun with the flame on its trailing side (room_entry.c)
+ * has passed no peak while its best is still within this of its start */
+#define SCAN_TRAIL_RAD (10.0f * FFR_DEG)
+/* chosen: facing out, the line sensor this near (mm, along the way out)
+ * to the doorway line's middle, or past it, is on it (a line is 25.4 mm
+ * wide): no edge will come */
+#define LEAVE_ON_LINE_MM 25.0f
+/* chosen: ...and only after an entry that passed the flame near: its peak
+ * at least this (x flame_detect; the 2001 plan's candles beside the door:
+ * 8-13 x; a far flame at the side, 3 x, is left to the approach's steering
+ * as before, a full turn costing 2.4 s) */
+#define SCAN_TRAIL_ENTRY_X 6.0f
 /* backing out, the scan point reached within this (mm) */
 #define BACK_AT_SCAN_MM 15.0f
 /* backing out after a detour: a point passed this near counts as reached
@@ -177,6 +191,13 @@ static void enter(ffr_state_t *st, uint8_t p)
         r->best_heading_rad = st->odo.heading_rad;
         r->best_front_mm = 0.0f;
         ffr_scan_sq_reset(&r->square);
+        r->scan_trail = SCAN_TRAIL_UNKNOWN;
+    }
+    if (p == RP_APPROACH) {
+        ffr_ahead_reset(r);
+    }
+    if (p == RP_ENTER_IN) {
+        r->entry_peak = 0.0f;
     }
     r->phase = p;
     r->phase_start_mm = st->odo.dist_mm;
@@ -199,6 +220,9 @@ void ffr_room_begin(ffr_state_t *st, uint8_t room, float entry_heading_rad)
     st->room.deeper_mm = 0;
     st->room.scans = 1u;
     ffr_obst_reset(&st->room.obst, st->odo.x_mm, st->odo.y_mm);
+    st->room.scan_trail = 0;
+    st->room.entry_peak = 0.0f;
+    ffr_ahead_reset(&st->room);
     enter(st, RP_ENTER_LINE);
 }
 
@@ -245,7 +269,9 @@ static uint8_t on_enter_in(ffr_state_t *st, room_tick_t *t)
     /* deep enough that a candle along the door's wall can be approached
      * with room to spare; the candle circle or a wall ahead stops it sooner */
     r->entry_flame = t->sig > r->entry_flame ? t->sig : r->entry_flame;
-    if (t->moved >= cfg->room_entry_mm || st->lines.edge || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
+    int passing = ffr_entry_passing_flame(cfg, &r->entry_peak, t->sig);
+    if (t->moved >= cfg->room_entry_mm || st->lines.edge || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm
+        || passing) {
         ffr_stop(st);
         r->scan_x_mm = st->odo.x_mm;
         r->scan_y_mm = st->odo.y_mm;
@@ -301,6 +327,12 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
     if (ffr_through_door(st, st->odo.heading_rad)) {
         sig = 0.0f; /* a flame out there is not this room's */
     }
+    if (r->scan_trail == SCAN_TRAIL_UNKNOWN) {
+        /* its first reading: the tail of a flame behind the way it turns? */
+        r->scan_trail = (uint8_t)(r->entry_peak >= SCAN_TRAIL_ENTRY_X * cfg->flame_detect
+                                  && ffr_scan_starts_trailing(cfg, dir, (float)t->in->flame[0],
+                                                              (float)t->in->flame[1], sig));
+    }
     if (sig > r->best_signal) {
         r->best_signal = sig;
         r->best_heading_rad = st->odo.heading_rad;
@@ -312,7 +344,8 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
      * the flame itself is still behind. Then the whole turn, and the
      * strongest. */
     if (r->best_signal >= cfg->flame_detect && sig < SCAN_PAST_PEAK * r->best_signal
-        && (r->best_signal >= SCAN_SURE * cfg->flame_detect || r->best_front_mm > SCAN_WALL_MM)) {
+        && (r->best_signal >= SCAN_SURE * cfg->flame_detect || r->best_front_mm > SCAN_WALL_MM)
+        && !(r->scan_trail && ffr_absf(r->best_heading_rad - r->start_heading_rad) < SCAN_TRAIL_RAD)) {
         return flame_found(st);
     }
     if (turned >= SCAN_FULL_TURN_RAD) {
@@ -401,6 +434,9 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
      * lets a front corner reach the wall before the guard stops it */
     int reach_stop = 0;
     int creep_end = 0;
+    /* the candle's base at the fans' reach ahead, told by the front ranger
+     * (a candle beside the door: the approach may begin inside its circle) */
+    int ahead = ffr_ahead_at_reach(cfg, r, st->ir_mm[FFR_IR_CF], st->odo.dist_mm, sig);
     if (sig >= FLAME_NEAR * cfg->flame_detect) {
         r->flame_near = 1;
     }
@@ -414,7 +450,7 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
     if (creep && (t->moved >= CREEP_MM || ffr_nose_in_doorway(st, &df))) {
         creep_end = 1;
     }
-    if (st->lines.edge || guard_stop || reach_stop || front_stop || creep_end) {
+    if (st->lines.edge || guard_stop || reach_stop || ahead || front_stop || creep_end) {
         ffr_stop(st);
         /* stopped by the flame's strength alone (nothing else stops it
          * here): if the fans do not put it out, it was farther than its
@@ -607,6 +643,13 @@ static uint8_t on_leave_turn(ffr_state_t *st, room_tick_t *t)
          * so later turns stay square to the walls */
         r->exit_heading_rad = target;
         t->result = FFR_ROOM_FACING_OUT;
+        if (ffr_leave_past_line_mm(st) >= -LEAVE_ON_LINE_MM) {
+            /* facing out from a scan point near the door, the line sensor
+             * is already on or beyond the doorway line: it crossed it
+             * turning, or no edge comes from the line under it */
+            st->flags &= (uint8_t)~FFR_FLAG_IN_ROOM;
+            return RP_LEAVE_OUT;
+        }
         return RP_LEAVE_LINE;
     }
     return RP_STAY;

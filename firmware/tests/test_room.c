@@ -259,6 +259,167 @@ TEST(leaving_hands_the_heading_out_to_the_route)
     CHECK(r.out.rooms_searched == 1);
 }
 
+/* ---- a candle beside the door (issue 13, doorcandle; room_entry.c) ---- */
+
+/* the approach with the flame near and the front ranger reading `mm` ahead */
+static void front_reads(rig_t *r, const ffr_config_t *cfg, float mm)
+{
+    r->in.ir_mv[FFR_IR_CF] = rig_mv_for_mm(cfg, mm);
+}
+
+TEST(a_candle_base_at_reach_ahead_stops_the_approach)
+{
+    /* inside the candle circle no line edge comes: the front ranger at the
+     * bottom of its span (nearer than ir_min_mm), with the flame near, stops
+     * the robot and the fans go on; with the flame far it drives on */
+    static const float below[] = {40.0f, 70.0f, 95.0f, 100.0f};
+    unsigned k;
+    for (k = 0; k < sizeof(below) / sizeof(below[0]); ++k) {
+        int near;
+        for (near = 0; near <= 1; ++near) {
+            ffr_config_t cfg;
+            rig_t r;
+            ffr_config_default(&cfg);
+            rig_room_route(&cfg, 0);
+            CHECK(into_the_approach(&r, &cfg, near ? NEAR_EACH : 300u));
+            front_reads(&r, &cfg, below[k]);
+            rig_tick(&r);
+            rig_tick(&r);
+            if (near) {
+                CHECK(r.out.state == FFR_ST_EXTINGUISH && r.out.fan == 1);
+                CHECK(r.st.cmd_v_mm_s == 0.0f && r.st.cmd_w_rad_s == 0.0f); /* stopped */
+            } else {
+                CHECK(r.out.state == FFR_ST_APPROACH && r.out.fan == 0);
+            }
+        }
+    }
+}
+
+TEST(a_front_ranger_folding_back_stops_the_approach)
+{
+    /* the reading near (up to 200 mm), then growing again by 30 mm or more
+     * while the robot drives on toward it: folded back below ~8 cm, the base
+     * at reach. A growth far off, or too small, drives on. */
+    static const float from[] = {120.0f, 150.0f, 190.0f, 400.0f, 150.0f};
+    static const float grow[] = {40.0f, 60.0f, 35.0f, 80.0f, 20.0f};
+    static const int stops[] = {1, 1, 1, 0, 0};
+    unsigned k;
+    for (k = 0; k < sizeof(from) / sizeof(from[0]); ++k) {
+        ffr_config_t cfg;
+        rig_t r;
+        int i;
+        float at;
+        ffr_config_default(&cfg);
+        rig_room_route(&cfg, 0);
+        CHECK(into_the_approach(&r, &cfg, NEAR_EACH));
+        front_reads(&r, &cfg, from[k]);
+        for (i = 0; i < 5; ++i) {
+            rig_tick(&r);
+        }
+        CHECK(r.out.state == FFR_ST_APPROACH);
+        front_reads(&r, &cfg, from[k] + grow[k]);
+        at = r.st.odo.dist_mm;
+        for (i = 0; i < 100 && r.out.state == FFR_ST_APPROACH; ++i) {
+            rig_tick(&r);
+        }
+        if (stops[k]) {
+            CHECK(r.out.state == FFR_ST_EXTINGUISH);
+            CHECK(r.st.odo.dist_mm - at < 40.0f); /* within a few cm */
+        } else {
+            CHECK(r.out.state == FFR_ST_APPROACH);
+        }
+    }
+}
+
+TEST(a_scan_begun_just_past_a_near_flame_turns_on_to_it)
+{
+    /* the scan turns left; at its start a near flame reads strong on the
+     * right sensor only and fades as the turn goes on: after an entry that
+     * passed the flame near (its peak 10 x flame_detect) that is no peak
+     * passed, the scan turns on. Without such an entry, or with the flame
+     * far at the start (1.5 x flame_detect), the early stop as before. */
+    static const uint16_t right[] = {700u, 700u, 275u};
+    static const float entry_x[] = {10.0f, 0.0f, 10.0f};
+    static const int turns_on[] = {1, 0, 0};
+    unsigned k;
+    for (k = 0; k < sizeof(right) / sizeof(right[0]); ++k) {
+        ffr_config_t cfg;
+        rig_t r;
+        int i;
+        float start;
+        ffr_config_default(&cfg);
+        rig_room_route(&cfg, 0);
+        CHECK(into_the_scan(&r, &cfg));
+        r.st.room.entry_peak = entry_x[k] * cfg.flame_detect;
+        start = r.st.odo.heading_rad;
+        for (i = 0; i < 400 && r.out.state == FFR_ST_SCAN; ++i) {
+            float turned = (r.st.odo.heading_rad - start) / FFR_DEG;
+            float f = (float)right[k] - ((float)right[k] - (float)DARK) * turned / 30.0f;
+            r.in.flame[0] = DARK;
+            r.in.flame[1] = (uint16_t)(f < (float)DARK ? (float)DARK : f);
+            rig_tick(&r);
+            if (turned > 90.0f) {
+                break;
+            }
+        }
+        if (turns_on[k]) {
+            CHECK(r.out.state == FFR_ST_SCAN);
+            CHECK((r.st.odo.heading_rad - start) / FFR_DEG > 90.0f);
+        } else {
+            CHECK(r.out.state != FFR_ST_SCAN || (r.st.odo.heading_rad - start) / FFR_DEG < 90.0f);
+            CHECK(r.st.room.flame_found != 0);
+        }
+    }
+}
+
+TEST(the_side_of_a_flame_and_a_flame_passed_by)
+{
+    ffr_config_t cfg;
+    float peak = 0.0f, d = 170.0f;
+    int i;
+    ffr_config_default(&cfg);
+    /* trailing: on the side the scan turns away from, near enough */
+    CHECK(ffr_scan_starts_trailing(&cfg, 1.0f, 50.0f, 600.0f, 650.0f) == 1);
+    CHECK(ffr_scan_starts_trailing(&cfg, -1.0f, 50.0f, 600.0f, 650.0f) == 0);
+    CHECK(ffr_scan_starts_trailing(&cfg, -1.0f, 600.0f, 50.0f, 650.0f) == 1);
+    CHECK(ffr_scan_starts_trailing(&cfg, 1.0f, 330.0f, 320.0f, 650.0f) == 0); /* ahead */
+    CHECK(ffr_scan_starts_trailing(&cfg, 1.0f, 20.0f, 300.0f, 320.0f) == 0);  /* below 2 x */
+    /* passed by: within reach (8 x), then below 0.6 of the peak; not before
+     * (a flicker of 30 % is no passing) */
+    for (i = 0; i < 20; ++i) {
+        CHECK(ffr_entry_passing_flame(&cfg, &peak, d * (1.0f + 0.5f * (float)i)) == 0);
+    }
+    CHECK(peak > 8.0f * d);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.7f * peak) == 0);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.55f * peak) == 1);
+    peak = 0.0f;
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 7.5f * d) == 0);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.5f * d) == 0); /* a flame passed farther off: on */
+}
+
+TEST(the_line_sensor_past_the_doorway_line_on_the_way_out)
+{
+    /* the doorway line met at (500, 0) going +x; facing out (-x) from
+     * origins along the way: the sensor (110 mm ahead) is past the line by
+     * 500 - x + 110 */
+    ffr_config_t cfg;
+    ffr_state_t st;
+    int k;
+    ffr_config_default(&cfg);
+    ffr_init(&st, &cfg);
+    st.room.line_x_mm = 500.0f;
+    st.room.line_y_mm = 0.0f;
+    st.room.exit_heading_rad = FFR_PI;
+    for (k = 0; k < 10; ++k) {
+        float x = 450.0f + 40.0f * (float)k;
+        st.odo.x_mm = x;
+        st.odo.y_mm = 30.0f;
+        st.odo.heading_rad = FFR_PI;
+        CHECK_NEAR(ffr_leave_past_line_mm(&st), 500.0f - x + cfg.line_sensor_x_mm, 0.05);
+    }
+}
+
+
 SUITE(room,
       TEST_REF(no_doorway_line_on_the_way_in_fails_no_line),
       TEST_REF(no_doorway_line_on_the_way_out_fails_no_line),
@@ -267,4 +428,9 @@ SUITE(room,
       TEST_REF(an_approached_flame_lost_and_not_found_again_fails_lost_flame),
       TEST_REF(a_flame_lost_and_found_again_is_approached_again),
       TEST_REF(a_far_flame_lost_is_searched_for_elsewhere),
-      TEST_REF(leaving_hands_the_heading_out_to_the_route));
+      TEST_REF(leaving_hands_the_heading_out_to_the_route),
+      TEST_REF(a_candle_base_at_reach_ahead_stops_the_approach),
+      TEST_REF(a_front_ranger_folding_back_stops_the_approach),
+      TEST_REF(a_scan_begun_just_past_a_near_flame_turns_on_to_it),
+      TEST_REF(the_side_of_a_flame_and_a_flame_passed_by),
+      TEST_REF(the_line_sensor_past_the_doorway_line_on_the_way_out));
