@@ -362,12 +362,11 @@ int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const 
  * no line through two rangers both in `not_both`, nor through one in
  * `not_any` unless the other reads at its span's bottom */
 #define FFR_FOLD_MAX_MM 160.0f
-/* the fold-back rules at the start: readings up to this many mm are
- * suspects; on by default since 24 Nov 2026 (FFR_FOLD_MAX_MM), build with
- * -DFFR_HOME_FOLD_MM=0.0f for the orientation before them (docs/firmware.md,
- * "A ranger folded back at the start": measured both ways) */
+/* the fold-back rules at the start built in: readings up to this many mm
+ * are suspects (FFR_FOLD_MAX_MM when on); 0, the default: off, the
+ * orientation as before (docs/firmware.md: the stress sweep lost missions) */
 #ifndef FFR_HOME_FOLD_MM
-#define FFR_HOME_FOLD_MM FFR_FOLD_MAX_MM
+#define FFR_HOME_FOLD_MM 0.0f
 #endif
 int ffr_orient_clearance_fold(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
                               uint8_t folded, uint8_t not_both, uint8_t not_any, float *dist_mm, float *nx,
