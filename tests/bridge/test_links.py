@@ -369,13 +369,18 @@ def test_a_watchdog_trip_between_missions_is_no_error_of_the_next(url: str) -> N
 def test_a_simulated_board_stalled_for_half_a_second_costs_no_retry(url: str) -> None:
     # Seen on a fresh CI machine: a board process not scheduled for over 0.25 s (the real-line
     # timeout) cost one retry and one stale answer on a clean host-board:serial link. A simulated
-    # board's transport loses nothing, so its first wait is 2 s (options.SIMULATED_TIMEOUT_S).
-    from hil_bridge.options import SIMULATED_TIMEOUT_S
+    # board's transport loses nothing, so on a clean link its first wait is 5 s
+    # (options.SIMULATED_TIMEOUT_S); with injected faults 2 s, so that the step budget holds tries.
+    from hil_bridge.options import SIMULATED_FAULTY_TIMEOUT_S, SIMULATED_TIMEOUT_S
 
     with open_link(f"{url}#step_delay_us=500000") as link:  # every answer 0.5 s late
-        assert link.opts.timeout_s == SIMULATED_TIMEOUT_S == 2.0  # type: ignore[attr-defined]
+        assert link.opts.timeout_s == SIMULATED_TIMEOUT_S == 5.0  # type: ignore[attr-defined]
+        assert link.opts.step_budget_s == 15.0  # type: ignore[attr-defined]
         run_mission(short_scenario(seconds=0.03), link)
         assert link.link_counters().errors == {}
+    with open_link(f"{url}#drop=0.01&seed=1") as link:  # faults injected: the short wait
+        assert link.opts.timeout_s == SIMULATED_FAULTY_TIMEOUT_S == 2.0  # type: ignore[attr-defined]
+        assert link.opts.step_budget_s == 6.0  # type: ignore[attr-defined]
     with open_link(f"{url}#timeout_s=0.05") as link:  # asked for: kept
         assert link.opts.timeout_s == 0.05  # type: ignore[attr-defined]
 
