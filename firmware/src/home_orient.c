@@ -51,6 +51,14 @@
 #define SEG_RANGE_MM 350.0f /* hits farther than this are too noisy for a direction      */
 #define SEG_MIN_TOTAL_MM 150.0f /* less wall than this seen: keep the heading as placed  */
 #define BIN_NONE 0xFFFFu
+/* chosen: the aim's band narrows by this (tan 5 degrees) per mm ahead: a
+ * sweep's hits are placed with its heading error (a few % of turn odometry
+ * over the 95 degree sweep, rangers read late while turning), so a side
+ * wall's end 50 cm ahead lands up to ~10 cm off its line, into the band (a
+ * realistic robot, turn odometry +4 %, read the east hallway blocked 48 cm
+ * ahead by the end of room 1's east wall and started west). A wall straight
+ * across still has hits on the axis. */
+#define AIM_BAND_SLOPE 0.0875f
 #define BAND_MARGIN_MM 30.0f /* the body's path: its half width plus this each side      */
 #define SHIFT_TOL_MM 40.0f   /* a shift shorter than this is not made                    */
 #define QUICK_TOL_DEG 2.0f
@@ -240,6 +248,12 @@ float ffr_orient_free_mm(const ffr_home_orient_t *o, float band, float dir, floa
 
 void ffr_orient_free4(const ffr_home_orient_t *o, float band, float dir0, float cx, float cy, float free_mm[4])
 {
+    ffr_orient_free4_cone(o, band, 0.0f, dir0, cx, cy, free_mm);
+}
+
+void ffr_orient_free4_cone(const ffr_home_orient_t *o, float band, float slope, float dir0, float cx, float cy,
+                           float free_mm[4])
+{
     /* one pass, the points turned into the walls' frame once (a tick's
      * budget: four passes with their own trigonometry cost twice it) */
     float c = ffr_cosf(dir0), s = ffr_sinf(dir0);
@@ -256,14 +270,14 @@ void ffr_orient_free4(const ffr_home_orient_t *o, float band, float dir0, float 
         qy = o->bin_y_mm[b] - cy;
         u = qx * c + qy * s;  /* along dir0      */
         v = qy * c - qx * s;  /* along dir0 + 90 */
-        if (ffr_absf(v) < band) {
+        if (ffr_absf(v) < band - slope * ffr_absf(u)) {
             if (u > 0.0f && u < free_mm[0]) {
                 free_mm[0] = u;
             } else if (u < 0.0f && -u < free_mm[2]) {
                 free_mm[2] = -u;
             }
         }
-        if (ffr_absf(u) < band) {
+        if (ffr_absf(u) < band - slope * ffr_absf(v)) {
             if (v > 0.0f && v < free_mm[1]) {
                 free_mm[1] = v;
             } else if (v < 0.0f && -v < free_mm[3]) {
@@ -280,7 +294,7 @@ int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float
     int k, best = -1;
     int best_score = -1;
     float best_turn = 0.0f;
-    ffr_orient_free4(o, cfg->body_half_width_mm + BAND_MARGIN_MM, dir0, cx, cy, free_mm);
+    ffr_orient_free4_cone(o, cfg->body_half_width_mm + BAND_MARGIN_MM, AIM_BAND_SLOPE, dir0, cx, cy, free_mm);
     for (k = 0; k < 4; ++k) {
         int left_wall = free_mm[(k + 1) & 3] < cfg->open_mm;
         int right_wall = free_mm[(k + 3) & 3] < cfg->open_mm;

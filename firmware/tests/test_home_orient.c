@@ -637,6 +637,49 @@ TEST(backed_up_to_a_wall_read_folded_back)
     }
 }
 
+/* The aim's band narrows with the distance ahead: the end of a side wall
+ * 48 cm ahead placed 10.5 cm off the axis by the sweep's heading error (a
+ * realistic robot at the home circle: the end of room 1's east wall) does
+ * not close the way, a wall straight across there still does. */
+static void put_bin(ffr_home_orient_t *o, int b, float x, float y)
+{
+    o->bin_mm[b] = (uint16_t)ffr_sqrtf(x * x + y * y);
+    o->bin_x_mm[b] = x;
+    o->bin_y_mm[b] = y;
+}
+
+TEST(a_far_wall_end_beside_the_way_does_not_close_it)
+{
+    ffr_config_t cfg;
+    ffr_home_orient_t o;
+    int b;
+    float f4[4];
+    ffr_config_default(&cfg);
+    cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+    for (b = 0; b < FFR_ORIENT_BINS; ++b) {
+        o.bin_mm[b] = 0xFFFFu;
+        o.bin_x_mm[b] = 0.0f;
+        o.bin_y_mm[b] = 0.0f;
+    }
+    /* a wall on the right (230 mm) along the way, one behind (250 mm) */
+    for (b = 0; b < 6; ++b) {
+        put_bin(&o, b, -100.0f + 100.0f * (float)b, -230.0f);
+    }
+    put_bin(&o, 6, -250.0f, 0.0f);
+    put_bin(&o, 7, -250.0f, 100.0f);
+    /* ahead-left, the wall end: 482 mm along, 105 mm aside */
+    put_bin(&o, 8, 482.0f, 105.0f);
+    /* with the fixed band it closes the way ahead (within 560 mm) */
+    ffr_orient_free4(&o, 130.0f, 0.0f, 0.0f, 0.0f, f4);
+    CHECK_NEAR(f4[0], 482.0f, 0.5f);
+    /* narrowed (5 degrees), the way ahead is open and chosen */
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) == 0);
+    /* a wall straight across 482 mm ahead still closes it */
+    put_bin(&o, 9, 482.0f, 0.0f);
+    put_bin(&o, 10, 482.0f, -60.0f);
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) != 0);
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -647,4 +690,5 @@ SUITE(home_orient,
       TEST_REF(a_small_shift_across_the_way_is_not_made),
       TEST_REF(a_reading_that_may_be_folded_back_counts_as_near),
       TEST_REF(a_short_move_tells_folded_back_from_far),
-      TEST_REF(backed_up_to_a_wall_read_folded_back));
+      TEST_REF(backed_up_to_a_wall_read_folded_back),
+      TEST_REF(a_far_wall_end_beside_the_way_does_not_close_it));
