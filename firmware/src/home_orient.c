@@ -70,7 +70,7 @@
 #define LINE_MARGIN_MM 10.0f      /* the sweep stops for a wall line this near     */
 #define LINE_REACH_MM 200.0f      /* a wall seen may reach this far on unseen     */
 #define ARC_BAND_MM 30.0f         /* an arc's path: the half width plus this       */
-#define ESCAPE_START_MM 40.0f     /* the front shut: less room than this beyond ESCAPE_FREE_MM (chosen) */
+#define ESCAPE_START_MM 0.0f      /* the front shut: less room than this beyond ESCAPE_FREE_MM (chosen) */
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
 #define LEG_BACK 5u               /* the escape's leg: straight back, the front shut */
 #define ESCAPE_SPEED_MM_S 120.0f  /* chosen: slow, so a wall unseen costs no bump  */
