@@ -78,7 +78,9 @@
 #define LINE_MARGIN_MM 10.0f      /* the sweep stops for a wall line this near     */
 #define LINE_REACH_MM 200.0f      /* a wall seen may reach this far on unseen     */
 #define ARC_BAND_MM 30.0f         /* an arc's path: the half width plus this       */
+#define ESCAPE_START_MM 0.0f      /* the front shut: less room than this beyond ESCAPE_FREE_MM (chosen) */
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
+#define LEG_BACK 5u               /* the escape's leg: straight back, the front shut */
 #define ESCAPE_SPEED_MM_S 120.0f  /* chosen: slow, so a wall unseen costs no bump  */
 #define PROBE_GROW_MM 8.0f        /* a reading grown this much on a move away: no fold-back */
 #define PROBE_MM 15.0f            /* the probe for fold-back: this far, straight (chosen) */
@@ -492,12 +494,31 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
         float lat = need - d + 10.0f;
         float c = 1.0f - lat / (2.0f * ESCAPE_RADIUS_MM);
         float a = ffr_atan2f(ffr_sqrtf(1.0f - c * c), c);
-        o->reverse = end_room(st, 1, ARC_BAND_MM) > end_room(st, 0, ARC_BAND_MM);
+        /* turning away from the wall's side, either way driven */
+        float front = end_room(st, 0, ARC_BAND_MM);
+        uint8_t was_back = o->leg == LEG_BACK;
+        int shut = front < st->cfg.body_front_mm + ESCAPE_FREE_MM + ESCAPE_START_MM;
+        /* after the straight back below: forward, if that gave the front room */
+        o->reverse = end_room(st, 1, ARC_BAND_MM) > front && (shut || !was_back);
         o->leg = 1u;
         o->leg_mm = ESCAPE_RADIUS_MM * a;
-        /* turning away from the wall's side, either way driven */
         o->target_rad = (ny > 0.0f ? -1.0f : 1.0f) / ESCAPE_RADIUS_MM;
         o->goal_mm = st->odo.dist_mm + o->leg_mm;
+        if (o->reverse && shut && !was_back) {
+            /* the front shut (a wall at a front corner): not an S backward
+             * at once. The rear pair look out at 135 degrees: they see none
+             * of the floor behind the rear face nor beside it, and the S's
+             * arcs swing a rear corner out over that floor (a wall's end
+             * there is met unseen). First straight back, the body within its
+             * own band, until the front would have room for the S; then look
+             * again (a wall's end behind comes into the rear pair's beams as
+             * the rear nears it) and drive the S forward. Once: a wall that
+             * keeps the front shut gets the S backward as before */
+            float want = st->cfg.body_front_mm + ESCAPE_FREE_MM + ESCAPE_START_MM + 10.0f - front;
+            o->leg = LEG_BACK;
+            o->target_rad = 0.0f;
+            o->goal_mm = st->odo.dist_mm + (want < ESCAPE_MAX_MM ? want : ESCAPE_MAX_MM);
+        }
     }
     o->phase = PH_ESCAPE;
 }
@@ -669,7 +690,7 @@ static int clear_step(ffr_state_t *st)
     }
     start_escape(st, need, d, nx, ny);
     /* the rangers this move goes away from: their readings tell fold-back */
-    if (o->leg == 0u) {
+    if (o->leg == 0u || o->leg == LEG_BACK) {
         mx = o->reverse ? -1.0f : 1.0f;
         my = 0.0f;
     } else {

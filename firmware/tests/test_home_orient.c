@@ -680,6 +680,56 @@ TEST(a_far_wall_end_beside_the_way_does_not_close_it)
     CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) != 0);
 }
 
+/* A wall at the front corner (the right wall steps in to 20 mm off the
+ * side beyond x = 125, 5 mm ahead of the front-right corner): the front is
+ * shut for an S, and nothing is seen behind, where the rear pair see no floor of the
+ * body's path. The first move is straight back (no corner swung out over
+ * the floor beside the rear), a later S forward; the body never reaches a
+ * wall, and it orients. */
+TEST(the_front_shut_straight_back_before_the_s)
+{
+    ffr_config_t cfg;
+    rig_walls_t w = {1000.0f, -180.0f, 0.0f, 125.0f, 60.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    rig_t r;
+    float ir[FFR_IR_COUNT];
+    int i, clear = 1, first = -1, s_back = 0;
+    ffr_config_default(&cfg);
+    rig_init(&r, &cfg);
+    r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
+    r.in.start = 1;
+    for (i = 0; i < 1500; ++i) {
+        float c, s;
+        int k;
+        readings(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+        if (r.out.state != FFR_ST_ORIENT && i > 2) {
+            break;
+        }
+        if (first < 0 && r.st.orient.escapes > 0u) {
+            /* the first move: straight back */
+            first = r.st.orient.leg;
+            CHECK(r.st.orient.reverse == 1u);
+            CHECK(r.st.orient.target_rad == 0.0f);
+        }
+        s_back |= r.st.orient.leg == 1u && r.st.orient.reverse;
+        c = ffr_cosf(r.st.odo.heading_rad);
+        s = ffr_sinf(r.st.odo.heading_rad);
+        for (k = 0; k < 4; ++k) {
+            static const float bx[4] = {120.0f, 120.0f, -100.0f, -100.0f};
+            static const float by[4] = {100.0f, -100.0f, 100.0f, -100.0f};
+            float px = r.st.odo.x_mm + c * bx[k] - s * by[k];
+            float py = r.st.odo.y_mm + s * bx[k] + c * by[k];
+            float wall = px > w.jog_x ? w.right_y + w.jog_dy : w.right_y;
+            clear &= py > wall && py < w.left_y;
+        }
+    }
+    CHECK(first == 5); /* LEG_BACK */
+    CHECK(!s_back);
+    CHECK(clear);
+    CHECK(r.out.state == FFR_ST_FOLLOW);
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -691,4 +741,5 @@ SUITE(home_orient,
       TEST_REF(a_reading_that_may_be_folded_back_counts_as_near),
       TEST_REF(a_short_move_tells_folded_back_from_far),
       TEST_REF(backed_up_to_a_wall_read_folded_back),
-      TEST_REF(a_far_wall_end_beside_the_way_does_not_close_it));
+      TEST_REF(a_far_wall_end_beside_the_way_does_not_close_it),
+      TEST_REF(the_front_shut_straight_back_before_the_s));
