@@ -171,6 +171,10 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
             op->rear_open_mm[side] += step_mm;
         }
         rear = rear && op->rear_ok[side];
+        if (op->front_saw[side] == FRONT_PAST_END && !op->opened[side] && front
+            && ffr_absf(fy) - op->rear_lat0_mm[side] < REAR_LAT_DRIFT_MM) {
+            op->front_saw[side] = 1; /* the wall goes on ahead, in line with the rear's: no end */
+        }
         if (op->front_saw[side] == FRONT_PAST_END) {
             /* pending: the rear ranger's leaving the wall decides */
             if (!op->opened[side] && (!op->rear_ok[side] || op->rear_open_mm[side] >= cfg->open_confirm_mm)) {
