@@ -21,7 +21,11 @@
  * side (a 46 cm hallway), which is no wall beside this one. So while pending
  * a front hit neither cancels the opening nor moves its end, and the rear
  * ranger leaving the wall (open, or its hits no longer alongside) opens it
- * at the rear's last hit on the wall. Only there: the explorer's legs (a
+ * at the rear's last hit on the wall. But a front hit in line with the
+ * rear ranger's wall (its distance to the side within REAR_LAT_DRIFT_MM of
+ * the rear's) before that is the same wall going on (the rear ranger on a
+ * door's jamb, the front one having looked through a gap): no end, the plain
+ * rule again. Only there: the explorer's legs (a
  * hallway start) and a route step's other side keep the plain rule, the
  * front ranger's far-side hit cancelling the opening (with pending there the
  * arbitrary-start hallway guard lost 23 of 391 and 51 of 658 missions:

@@ -73,6 +73,19 @@ TEST(an_opening_seen_past_its_wall_end_survives_its_far_side)
     rig_travel_pend(&op, &cfg, ir, &d, 1, FFR_SIDE_RIGHT);
     CHECK(ffr_opening(&op, FFR_SIDE_RIGHT));
     CHECK_NEAR(op.open_at_mm[FFR_SIDE_RIGHT], last - 80.0f - 226.0f * 0.70710678f, 0.5);
+    /* the front ranger's next hit in line with the rear's wall (within
+     * 60 mm of its distance to the side): the wall goes on, no end */
+    ffr_openings_reset(&op);
+    d = 0.0f;
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_RR] = 226.0f;
+    rig_travel_pend(&op, &cfg, ir, &d, 34, FFR_SIDE_RIGHT);
+    ir[FFR_IR_RF] = (240.0f - 70.0f) / 0.70710678f;
+    rig_travel_pend(&op, &cfg, ir, &d, 20, FFR_SIDE_RIGHT);
+    ir[FFR_IR_RR] = FFR_IR_NONE(&cfg);
+    rig_travel_pend(&op, &cfg, ir, &d, 8, FFR_SIDE_RIGHT);
+    CHECK(!ffr_opening(&op, FFR_SIDE_RIGHT));
+    CHECK(op.front_saw[FFR_SIDE_RIGHT] == 1u);
     /* not in a step ending at this side's opening (the explorer's legs):
      * the far side seen first is the plain rule's wall, no opening */
     ffr_openings_reset(&op);
