@@ -178,10 +178,11 @@ void ffr_turn_finish(ffr_state_t *st, float target_rad);
 void ffr_lines_reset(ffr_line_counter_t *l);
 void ffr_lines_update(ffr_line_counter_t *l, const ffr_config_t *cfg, uint8_t line, float dist_mm);
 
-/* openings.c: a side wall seen, then ending. */
+/* openings.c: a side wall seen, then ending. pend_side: the side whose
+ * opening ends the route's current step (ffr_route_open_side), -1 none. */
 void ffr_openings_reset(ffr_openings_t *op);
 void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_ir_geom_t *g,
-                         const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm);
+                         const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm, int pend_side);
 int ffr_opening(const ffr_openings_t *op, int side);
 /* 1 once the n-th (0 or 1: the first) whole opening on a side has been seen
  * this step; where its middle is, as an odometry distance. */
@@ -395,6 +396,9 @@ uint8_t ffr_orient_probe_trust(const ffr_config_t *cfg, uint8_t probed, const fl
 
 /* route.c: the route program interpreter. */
 void ffr_route_begin(ffr_state_t *st, uint8_t pc);
+/* route.c: the side whose opening the route's current step follows to
+ * (FOLLOW ... OPEN_L/R), -1 for any other step or the explorer */
+int ffr_route_open_side(const ffr_state_t *st);
 void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in);
 
 /* explore.c: the arbitrary start mode (cfg->start_area == FFR_START_HALLWAY).

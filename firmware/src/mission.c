@@ -119,7 +119,8 @@ void ffr_step(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out)
     before = st->odo.dist_mm;
     ffr_odometry_update(&st->odo, cfg, in->enc, dt);
     ffr_lines_update(&st->lines, cfg, in->line, st->odo.dist_mm);
-    ffr_openings_update(&st->open, cfg, &st->ir_geom, st->ir_mm, st->odo.dist_mm, st->odo.dist_mm - before);
+    ffr_openings_update(&st->open, cfg, &st->ir_geom, st->ir_mm, st->odo.dist_mm, st->odo.dist_mm - before,
+                        ffr_route_open_side(st));
     ffr_gaps_update(&st->open, cfg, &st->ir_geom, st->ir_mm, st->odo.dist_mm, st->odo.dist_mm - before,
                     st->odo.heading_rad - st->route.heading_ref_rad);
 

@@ -11,6 +11,25 @@
  * own last hit point (behind the origin) marks the wall's end once it opens.
  * Only a wall the robot passes along: one whose distance to the side stays
  * put; a wall across a junction behind the robot recedes and does not count.
+ *
+ * In a route step that ends at this side's opening (FOLLOW ... OPEN_L/R:
+ * pend_side, from route.c) such a step's opening is pending once the front ranger has read open for
+ * open_confirm_mm with the wall seen by the rear one alone (FRONT_PAST_END):
+ * the front is past the wall's end, in the opening. The rear ranger looks
+ * back ~20-25 cm, so it leaves the wall only when the robot is that far into
+ * the opening; by then the front ranger may already see the opening's far
+ * side (a 46 cm hallway), which is no wall beside this one. So while pending
+ * a front hit neither cancels the opening nor moves its end, and the rear
+ * ranger leaving the wall (open, or its hits no longer alongside) opens it
+ * at the rear's last hit on the wall. But a front hit in line with the
+ * rear ranger's wall (its distance to the side within REAR_LAT_DRIFT_MM of
+ * the rear's) before that is the same wall going on (the rear ranger on a
+ * door's jamb, the front one having looked through a gap): no end, the plain
+ * rule again. Only there: the explorer's legs (a
+ * hallway start) and a route step's other side keep the plain rule, the
+ * front ranger's far-side hit cancelling the opening (with pending there the
+ * arbitrary-start hallway guard lost 23 of 391 and 51 of 658 missions:
+ * docs/robustness.md).
  */
 #include "ffr_internal.h"
 
@@ -21,6 +40,9 @@
  * when it still counts as beside; slow drift is followed at this share per tick */
 #define FRONT_JUMP_MM 70.0f
 #define FRONT_LAT_FOLLOW 0.2f
+/* ffr_openings_t.front_saw: the front ranger saw no wall this step but has
+ * read open past the wall the rear ranger sees (a pending opening, above) */
+#define FRONT_PAST_END 2u
 
 void ffr_openings_reset(ffr_openings_t *op)
 {
@@ -114,7 +136,7 @@ static void gap_update(ffr_openings_t *op, const ffr_config_t *cfg, int side, in
 }
 
 void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_ir_geom_t *g,
-                         const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm)
+                         const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm, int pend_side)
 {
     int side;
     for (side = 0; side < 2; ++side) {
@@ -142,12 +164,29 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
             } else if (ffr_absf(lat - op->rear_lat0_mm[side]) > REAR_LAT_DRIFT_MM) {
                 op->rear_ok[side] = 0; /* not a wall alongside: for good, this step */
             }
-            op->rear_open_mm[side] = 0.0f;
-            op->rear_at_mm[side] = dist_mm + rx;
+            if (op->rear_ok[side] || op->front_saw[side] != FRONT_PAST_END) {
+                /* pending, the last hit on the wall alongside is kept */
+                op->rear_open_mm[side] = 0.0f;
+                op->rear_at_mm[side] = dist_mm + rx;
+            } else {
+                op->rear_open_mm[side] += step_mm;
+            }
         } else {
             op->rear_open_mm[side] += step_mm;
         }
         rear = rear && op->rear_ok[side];
+        if (op->front_saw[side] == FRONT_PAST_END && !op->opened[side] && front
+            && ffr_absf(fy) - op->rear_lat0_mm[side] < REAR_LAT_DRIFT_MM) {
+            op->front_saw[side] = 1; /* the wall goes on ahead, in line with the rear's: no end */
+        }
+        if (op->front_saw[side] == FRONT_PAST_END) {
+            /* pending: the rear ranger's leaving the wall decides */
+            if (!op->opened[side] && (!op->rear_ok[side] || op->rear_open_mm[side] >= cfg->open_confirm_mm)) {
+                op->opened[side] = 1;
+                op->open_at_mm[side] = op->rear_at_mm[side];
+            }
+            continue;
+        }
         if (front || rear) {
             op->seen_mm[side] += step_mm;
             if (op->seen_mm[side] >= cfg->wall_seen_mm) {
@@ -177,6 +216,8 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
                     /* only the rear ranger saw the wall: it ended where that one last hit it */
                     op->opened[side] = 1;
                     op->open_at_mm[side] = op->rear_at_mm[side];
+                } else if (op->rear_ok[side] && side == pend_side) {
+                    op->front_saw[side] = FRONT_PAST_END; /* the rear ranger still on it */
                 }
             }
         }

@@ -12,6 +12,22 @@ enum { PH_DRIVE = 0, PH_WRAP = 1 };
 
 static const ffr_step_t *cur(const ffr_state_t *st) { return &st->cfg.route[st->route.pc]; }
 
+int ffr_route_open_side(const ffr_state_t *st)
+{
+    const ffr_step_t *s;
+    if (st->cfg.start_area == FFR_START_HALLWAY || st->state != FFR_ST_FOLLOW || st->route.pc >= st->cfg.route_len) {
+        return -1;
+    }
+    s = cur(st);
+    if (s->op != FFR_OP_FOLLOW) {
+        return -1;
+    }
+    if (s->event == FFR_EV_OPEN_L) {
+        return FFR_SIDE_LEFT;
+    }
+    return s->event == FFR_EV_OPEN_R ? FFR_SIDE_RIGHT : -1;
+}
+
 static void begin_current(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;

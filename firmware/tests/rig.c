@@ -81,14 +81,20 @@ const ffr_ir_geom_t *rig_geom(ffr_ir_geom_t *g, const ffr_config_t *cfg, const f
     return g;
 }
 
-void rig_travel(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float *d, int ticks)
+void rig_travel_pend(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float *d,
+                     int ticks, int pend_side)
 {
     ffr_ir_geom_t g;
     int i;
     rig_geom(&g, cfg, ir_mm);
     for (i = 0; i < ticks; ++i, *d += 3.0f) {
-        ffr_openings_update(op, cfg, &g, ir_mm, *d, 3.0f);
+        ffr_openings_update(op, cfg, &g, ir_mm, *d, 3.0f, pend_side);
     }
+}
+
+void rig_travel(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float *d, int ticks)
+{
+    rig_travel_pend(op, cfg, ir_mm, d, ticks, -1);
 }
 
 void rig_ray(const ffr_config_t *cfg, int i, float x, float y, float th, float *mx, float *my, float *ux,

@@ -32,6 +32,9 @@ void rig_room_route(ffr_config_t *cfg, int home);
 const ffr_ir_geom_t *rig_geom(ffr_ir_geom_t *g, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT]);
 /* openings.c alone: `ticks` ticks of 3 mm travel from *d with these ranges */
 void rig_travel(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float *d, int ticks);
+/* the same in a route step following to pend_side's opening (-1: none) */
+void rig_travel_pend(ffr_openings_t *op, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT], float *d,
+                     int ticks, int pend_side);
 /* Straight walls around a true pose, for the rangers' readings in closed-loop tests. */
 typedef struct {
     float left_y, right_y;   /* hallway walls along x: y = left_y (> 0), y = right_y (< 0) */

@@ -97,7 +97,7 @@ TEST(a_hit_jumping_out_is_past_the_wall_end_a_drift_is_followed)
     for (i = 0; i < 100; ++i, d += 3.0f) {
         ffr_ir_geom_t g;
         ir[FFR_IR_LF] = 226.0f + (float)i * 1.5f;
-        ffr_openings_update(&op, &cfg, rig_geom(&g, &cfg, ir), ir, d, 3.0f);
+        ffr_openings_update(&op, &cfg, rig_geom(&g, &cfg, ir), ir, d, 3.0f, -1);
     }
     CHECK(op.seen[FFR_SIDE_LEFT] && !ffr_opening(&op, FFR_SIDE_LEFT));
 }

@@ -34,6 +34,72 @@ TEST(openings_by_the_rear_ranger)
     CHECK(!ffr_opening(&op, FFR_SIDE_LEFT));
 }
 
+/* A step that starts at the wall's end (the corridor's north end, the west
+ * hallway's opening 23 cm ahead): the rear ranger stays on the wall until the
+ * robot is ~20 cm into the opening, and by then the front ranger sees the
+ * opening's far side. That is no reason to drop the opening. */
+TEST(an_opening_seen_past_its_wall_end_survives_its_far_side)
+{
+    ffr_config_t cfg;
+    ffr_openings_t op;
+    float ir[FFR_IR_COUNT];
+    float d = 0.0f, last;
+    ffr_config_default(&cfg);
+    rig_no_walls(&cfg, ir);
+    ffr_openings_reset(&op);
+    ir[FFR_IR_RR] = 226.0f; /* the wall beside, 70 + 160 mm to the side */
+    rig_travel_pend(&op, &cfg, ir, &d, 34, FFR_SIDE_RIGHT);
+    CHECK(op.seen[FFR_SIDE_RIGHT] && !ffr_opening(&op, FFR_SIDE_RIGHT));
+    /* the front ranger hits the opening's far side, 300 mm to the side */
+    ir[FFR_IR_RF] = (300.0f - 70.0f) / 0.70710678f;
+    rig_travel_pend(&op, &cfg, ir, &d, 20, FFR_SIDE_RIGHT);
+    CHECK(!ffr_opening(&op, FFR_SIDE_RIGHT)); /* the rear ranger still on the wall */
+    last = d - 3.0f;
+    /* the rear ranger leaves the wall: open, at its last hit */
+    ir[FFR_IR_RR] = FFR_IR_NONE(&cfg);
+    rig_travel_pend(&op, &cfg, ir, &d, 8, FFR_SIDE_RIGHT);
+    CHECK(ffr_opening(&op, FFR_SIDE_RIGHT));
+    CHECK_NEAR(op.open_at_mm[FFR_SIDE_RIGHT], last - 80.0f - 226.0f * 0.70710678f, 0.5);
+    /* the same, its hits going off the wall alongside (a far wall behind) */
+    ffr_openings_reset(&op);
+    d = 0.0f;
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_RR] = 226.0f;
+    rig_travel_pend(&op, &cfg, ir, &d, 34, FFR_SIDE_RIGHT);
+    ir[FFR_IR_RF] = (300.0f - 70.0f) / 0.70710678f;
+    rig_travel_pend(&op, &cfg, ir, &d, 5, FFR_SIDE_RIGHT);
+    last = d - 3.0f;
+    ir[FFR_IR_RR] = 226.0f + 100.0f;
+    rig_travel_pend(&op, &cfg, ir, &d, 1, FFR_SIDE_RIGHT);
+    CHECK(ffr_opening(&op, FFR_SIDE_RIGHT));
+    CHECK_NEAR(op.open_at_mm[FFR_SIDE_RIGHT], last - 80.0f - 226.0f * 0.70710678f, 0.5);
+    /* the front ranger's next hit in line with the rear's wall (within
+     * 60 mm of its distance to the side): the wall goes on, no end */
+    ffr_openings_reset(&op);
+    d = 0.0f;
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_RR] = 226.0f;
+    rig_travel_pend(&op, &cfg, ir, &d, 34, FFR_SIDE_RIGHT);
+    ir[FFR_IR_RF] = (240.0f - 70.0f) / 0.70710678f;
+    rig_travel_pend(&op, &cfg, ir, &d, 20, FFR_SIDE_RIGHT);
+    ir[FFR_IR_RR] = FFR_IR_NONE(&cfg);
+    rig_travel_pend(&op, &cfg, ir, &d, 8, FFR_SIDE_RIGHT);
+    CHECK(!ffr_opening(&op, FFR_SIDE_RIGHT));
+    CHECK(op.front_saw[FFR_SIDE_RIGHT] == 1u);
+    /* not in a step ending at this side's opening (the explorer's legs):
+     * the far side seen first is the plain rule's wall, no opening */
+    ffr_openings_reset(&op);
+    d = 0.0f;
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_RR] = 226.0f;
+    rig_travel(&op, &cfg, ir, &d, 34);
+    ir[FFR_IR_RF] = (300.0f - 70.0f) / 0.70710678f;
+    rig_travel(&op, &cfg, ir, &d, 20);
+    ir[FFR_IR_RR] = FFR_IR_NONE(&cfg);
+    rig_travel(&op, &cfg, ir, &d, 8);
+    CHECK(!ffr_opening(&op, FFR_SIDE_RIGHT));
+}
+
 TEST(far_hits_are_not_the_wall)
 {
     ffr_config_t cfg;
@@ -412,6 +478,7 @@ SUITE(robustness,
       TEST_REF(a_flame_not_out_from_where_its_strength_said_is_approached_closer),
       TEST_REF(flame_dark_level_is_learned),
       TEST_REF(openings_by_the_rear_ranger),
+      TEST_REF(an_opening_seen_past_its_wall_end_survives_its_far_side),
       TEST_REF(far_hits_are_not_the_wall),
       TEST_REF(one_ranger_keeps_heading_feedback),
       TEST_REF(door_wall_guard_stops_by_the_jamb),
