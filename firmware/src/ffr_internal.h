@@ -192,6 +192,7 @@ int ffr_gap(const ffr_openings_t *op, int side, uint8_t n);
 void ffr_gaps_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_ir_geom_t *g,
                      const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm, float yaw_rad);
 float ffr_gap_middle_mm(const ffr_openings_t *op, const ffr_config_t *cfg, int side);
+float ffr_open_middle_mm(const ffr_openings_t *op, const ffr_config_t *cfg, int side);
 
 /* room.c: the room task (Fig. 11) and the flame task (Fig. 12), one handler
  * a phase. It writes no route state: what route.c must do, it returns. */

@@ -252,3 +252,20 @@ float ffr_gap_middle_mm(const ffr_openings_t *op, const ffr_config_t *cfg, int s
      * wide, so a middle taken from it fell late; docs/firmware.md) */
     return op->gap_end_mm[side] - cfg->hallway_half_mm;
 }
+
+float ffr_open_middle_mm(const ffr_openings_t *op, const ffr_config_t *cfg, int side)
+{
+    float goal = op->open_at_mm[side] + cfg->hallway_half_mm;
+    /* a gap closed beyond the wall's end (gap_end past open_at) is this
+     * opening's far edge: the near edge, the front corner ranger's last hit
+     * on the wall before, is late by as much as the far edge, its first hit
+     * on what follows, is early (the beam's width either way), so their
+     * middle is the opening's */
+    if (op->gap_end_mm[side] > op->open_at_mm[side]) {
+        float mid = 0.5f * (op->open_at_mm[side] + op->gap_end_mm[side]);
+        if (mid < goal) {
+            goal = mid;
+        }
+    }
+    return goal;
+}

@@ -156,6 +156,13 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
                 return;
             }
         }
+        if (s->event == FFR_EV_OPEN_L || s->event == FFR_EV_OPEN_R) {
+            /* the opening's far edge seen before the robot got to its
+             * assumed middle: a narrower opening, its middle between the two
+             * edges (openings.c) */
+            st->route.goal_mm = ffr_open_middle_mm(&st->open, cfg, s->event == FFR_EV_OPEN_L ? FFR_SIDE_LEFT
+                                                                                            : FFR_SIDE_RIGHT);
+        }
         if (s->event == FFR_EV_GAP_L || s->event == FFR_EV_GAP_R) {
             /* the far edge is refined as the robot nears it (openings.c) */
             st->route.goal_mm = ffr_gap_middle_mm(&st->open, cfg, s->event == FFR_EV_GAP_L ? FFR_SIDE_LEFT

@@ -364,6 +364,29 @@ TEST(gaps_follow_stops_in_the_middle_of_the_nth_opening)
     CHECK_NEAR(follow_to_gap(2), 1170.0, 40.0);
 }
 
+TEST(open_a_far_edge_seen_before_the_assumed_middle_puts_the_middle_between_the_edges)
+{
+    ffr_config_t cfg;
+    ffr_openings_t op;
+    ffr_config_default(&cfg);
+    ffr_openings_reset(&op);
+    op.opened[FFR_SIDE_LEFT] = 1;
+    op.open_at_mm[FFR_SIDE_LEFT] = 1000.0f;
+    /* no far edge yet: half a hallway past the wall's end, as before */
+    CHECK_NEAR(ffr_open_middle_mm(&op, &cfg, FFR_SIDE_LEFT), 1000.0f + cfg.hallway_half_mm, 0.01);
+    /* a far edge before the wall's end is an earlier opening's: not this one */
+    op.gap_end_mm[FFR_SIDE_LEFT] = 700.0f;
+    CHECK_NEAR(ffr_open_middle_mm(&op, &cfg, FFR_SIDE_LEFT), 1000.0f + cfg.hallway_half_mm, 0.01);
+    /* a 36 cm door: its middle between the two edges, short of the assumed one */
+    op.gap_end_mm[FFR_SIDE_LEFT] = 1360.0f;
+    CHECK_NEAR(ffr_open_middle_mm(&op, &cfg, FFR_SIDE_LEFT), 1180.0, 0.01);
+    /* a wide door's far edge never sends the robot past the assumed middle */
+    op.gap_end_mm[FFR_SIDE_LEFT] = 1560.0f;
+    CHECK_NEAR(ffr_open_middle_mm(&op, &cfg, FFR_SIDE_LEFT), 1000.0f + cfg.hallway_half_mm, 0.01);
+    /* the other side is its own */
+    CHECK_NEAR(ffr_open_middle_mm(&op, &cfg, FFR_SIDE_RIGHT), cfg.hallway_half_mm, 0.01);
+}
+
 SUITE(openings,
       TEST_REF(open_from_the_start_is_no_opening),
       TEST_REF(a_wall_then_open_is_an_opening_and_stays_one),
@@ -374,4 +397,5 @@ SUITE(openings,
       TEST_REF(gaps_a_yawed_robot_puts_the_far_edge_along_the_corridor),
       TEST_REF(gaps_the_far_edge_is_refined_from_nearer_hits_on_its_face),
       TEST_REF(gaps_a_spike_is_no_wall_and_a_dropout_no_opening),
-      TEST_REF(gaps_follow_stops_in_the_middle_of_the_nth_opening));
+      TEST_REF(gaps_follow_stops_in_the_middle_of_the_nth_opening),
+      TEST_REF(open_a_far_edge_seen_before_the_assumed_middle_puts_the_middle_between_the_edges));
