@@ -34,6 +34,20 @@ TEST(openings_by_the_rear_ranger)
     CHECK(!ffr_opening(&op, FFR_SIDE_LEFT));
 }
 
+/* A fresh step past a wall's end: the rear ranger on the wall beside (70 +
+ * 160 mm to the side) for 34 steps, then the front ranger's hit `lat_mm` to
+ * the side (pending: the route's step ends at this side's opening) */
+static void past_a_wall_end(ffr_openings_t *op, const ffr_config_t *cfg, float ir[FFR_IR_COUNT], float *d,
+                            float lat_mm)
+{
+    ffr_openings_reset(op);
+    *d = 0.0f;
+    rig_no_walls(cfg, ir);
+    ir[FFR_IR_RR] = 226.0f;
+    rig_travel_pend(op, cfg, ir, d, 34, FFR_SIDE_RIGHT);
+    ir[FFR_IR_RF] = (lat_mm - 70.0f) / 0.70710678f;
+}
+
 /* A step that starts at the wall's end (the corridor's north end, the west
  * hallway's opening 23 cm ahead): the rear ranger stays on the wall until the
  * robot is ~20 cm into the opening, and by then the front ranger sees the
@@ -61,12 +75,7 @@ TEST(an_opening_seen_past_its_wall_end_survives_its_far_side)
     CHECK(ffr_opening(&op, FFR_SIDE_RIGHT));
     CHECK_NEAR(op.open_at_mm[FFR_SIDE_RIGHT], last - 80.0f - 226.0f * 0.70710678f, 0.5);
     /* the same, its hits going off the wall alongside (a far wall behind) */
-    ffr_openings_reset(&op);
-    d = 0.0f;
-    rig_no_walls(&cfg, ir);
-    ir[FFR_IR_RR] = 226.0f;
-    rig_travel_pend(&op, &cfg, ir, &d, 34, FFR_SIDE_RIGHT);
-    ir[FFR_IR_RF] = (300.0f - 70.0f) / 0.70710678f;
+    past_a_wall_end(&op, &cfg, ir, &d, 300.0f);
     rig_travel_pend(&op, &cfg, ir, &d, 5, FFR_SIDE_RIGHT);
     last = d - 3.0f;
     ir[FFR_IR_RR] = 226.0f + 100.0f;
@@ -75,12 +84,7 @@ TEST(an_opening_seen_past_its_wall_end_survives_its_far_side)
     CHECK_NEAR(op.open_at_mm[FFR_SIDE_RIGHT], last - 80.0f - 226.0f * 0.70710678f, 0.5);
     /* the front ranger's next hit in line with the rear's wall (within
      * 60 mm of its distance to the side): the wall goes on, no end */
-    ffr_openings_reset(&op);
-    d = 0.0f;
-    rig_no_walls(&cfg, ir);
-    ir[FFR_IR_RR] = 226.0f;
-    rig_travel_pend(&op, &cfg, ir, &d, 34, FFR_SIDE_RIGHT);
-    ir[FFR_IR_RF] = (240.0f - 70.0f) / 0.70710678f;
+    past_a_wall_end(&op, &cfg, ir, &d, 240.0f);
     rig_travel_pend(&op, &cfg, ir, &d, 20, FFR_SIDE_RIGHT);
     ir[FFR_IR_RR] = FFR_IR_NONE(&cfg);
     rig_travel_pend(&op, &cfg, ir, &d, 8, FFR_SIDE_RIGHT);
