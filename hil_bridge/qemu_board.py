@@ -68,6 +68,26 @@ def _elf(name: str) -> Path:
     return REPO / "build" / "arm" / f"{name}-board.elf"
 
 
+def board_image(machine: str, default: Path) -> Path:
+    """The image to boot: ``$FFR_QEMU_IMAGE``; else the one built beside the host build the other
+    links run (``$FFR_FIRMWARE_LIB``/``$FFR_HOST_BOARD``: the same directory, or ``../arm/`` of a
+    ``build/host/``), so a second checkout sharing this install compares its own build with itself;
+    else this checkout's ``build/arm/``."""
+    env = os.environ.get("FFR_QEMU_IMAGE")
+    if env:
+        return Path(env)
+    name = f"{machine}-board.elf"
+    for var in ("FFR_FIRMWARE_LIB", "FFR_HOST_BOARD"):
+        host = os.environ.get(var)
+        if not host:
+            continue
+        where = Path(host).resolve().parent
+        for image in (where / name, where.parent / "arm" / name):
+            if image.exists() and image.resolve() != default.resolve():
+                return image
+    return default
+
+
 MACHINES = {
     # CMSDK timer 0 on the 25 MHz clock: 40 ns, 40 instructions a count
     # its LAN9118 Ethernet is the default link (docs/pil.md, "Speed"), #transport=uart the UART
@@ -103,7 +123,7 @@ class QemuBoard:
     its Ethernet (datagrams on a local socket: ``eth_sock`` is QEMU's end, ``host_sock`` ours)."""
 
     def __init__(self, machine: str, spec: Machine, log: str = "", transport: str = "uart") -> None:
-        elf = Path(os.environ.get("FFR_QEMU_IMAGE") or spec.elf)  # another board image: a team's (docs/teams.md)
+        elf = board_image(machine, spec.elf)  # a team's image, or another checkout's (docs/teams.md)
         qemu = shutil.which("qemu-system-arm")
         if qemu is None:
             raise LinkError(f"qemu:{machine}: qemu-system-arm not found (apt-get install qemu-system-arm)")

@@ -395,3 +395,29 @@ def test_a_board_gone_is_known_at_once_however_long_the_wait() -> None:
         with pytest.raises(LinkError, match="gone"):
             run_mission(short_scenario(seconds=0.05), link)
         assert time.monotonic() - t0 < 0.5
+
+
+def test_the_emulated_board_boots_the_image_built_beside_the_host_build(monkeypatch, tmp_path) -> None:
+    """A second checkout sharing this install sets FFR_FIRMWARE_LIB to its build: its qemu: link must
+    boot its own image, not this checkout's (a b2b would compare two different firmwares)."""
+    from hil_bridge.qemu_board import board_image
+
+    ours = tmp_path / "ours" / "build" / "arm" / "mps2-an386-board.elf"
+    other = tmp_path / "other" / "build"
+    for f in (ours, other / "host" / "libffr.so", other / "arm" / "mps2-an386-board.elf"):
+        f.parent.mkdir(parents=True, exist_ok=True)
+        f.write_bytes(b"x")
+    for var in ("FFR_QEMU_IMAGE", "FFR_FIRMWARE_LIB", "FFR_HOST_BOARD"):
+        monkeypatch.delenv(var, raising=False)
+    assert board_image("mps2-an386", ours) == ours
+    monkeypatch.setenv("FFR_FIRMWARE_LIB", str(other / "host" / "libffr.so"))
+    assert board_image("mps2-an386", ours) == (other / "arm" / "mps2-an386-board.elf").resolve()
+    assert board_image("microbit", ours) == ours  # no image of that board beside it: ours
+    team = tmp_path / "team"  # a team's build keeps its library and image in one directory
+    for f in (team / "libwall.so", team / "mps2-an386-board.elf"):
+        f.parent.mkdir(parents=True, exist_ok=True)
+        f.write_bytes(b"x")
+    monkeypatch.setenv("FFR_FIRMWARE_LIB", str(team / "libwall.so"))
+    assert board_image("mps2-an386", ours) == (team / "mps2-an386-board.elf").resolve()
+    monkeypatch.setenv("FFR_QEMU_IMAGE", str(ours))  # named outright: that one
+    assert board_image("mps2-an386", ours) == ours
