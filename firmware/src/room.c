@@ -481,7 +481,17 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
         }
         return RP_SCAN;
     }
-    st->cmd_v_mm_s = ffr_proximity_speed(cfg, st->ir_mm, creep ? CREEP_SPEED_MM_S : cfg->approach_speed_mm_s);
+    if (creep) {
+        st->cmd_v_mm_s = ffr_proximity_speed(cfg, st->ir_mm, CREEP_SPEED_MM_S);
+    } else {
+        /* slowing for what is ahead to stop at the approach's own front stop
+         * (approach_stop_mm), where it is now (the reading's age off): the
+         * route's ramp (front_slow_mm to front_stop_mm, 35 % at its end) took
+         * the candle's own base, seen by the front ranger from the scan point
+         * on, for a wall and crawled the whole approach */
+        float ahead_mm = ffr_front_now(cfg, &st->odo, st->ir_mm) - cfg->approach_stop_mm;
+        st->cmd_v_mm_s = ffr_stopping_speed(ahead_mm, cfg->approach_speed_mm_s);
+    }
     if (detour != 0.0f) {
         /* around an obstacle: the flame's heading offset by the detour, and
          * slower while the corridor is not yet clear */
