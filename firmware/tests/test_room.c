@@ -420,6 +420,41 @@ TEST(the_line_sensor_past_the_doorway_line_on_the_way_out)
 }
 
 
+TEST(the_approach_slows_for_its_own_front_stop)
+{
+    /* something ahead (a candle's base, a wall): the approach goes at its
+     * speed while braking at the stopping law would still stop it by
+     * approach_stop_mm (the reading's age counted), slower nearer; with the
+     * front at the route's old ramp (front_slow_mm to front_stop_mm) it no
+     * longer crawls */
+    static const float front[] = {700.0f, 450.0f, 350.0f, 300.0f, 260.0f, 230.0f, 210.0f};
+    unsigned k;
+    float prev = 1.0e9f;
+    for (k = 0; k < sizeof(front) / sizeof(front[0]); ++k) {
+        ffr_config_t cfg;
+        rig_t r;
+        int i;
+        float want;
+        ffr_config_default(&cfg);
+        rig_room_route(&cfg, 0);
+        CHECK(into_the_approach(&r, &cfg, NEAR_EACH));
+        front_reads(&r, &cfg, front[k] - cfg.ir_x_mm[FFR_IR_CF]);
+        for (i = 0; i < 3; ++i) {
+            rig_tick(&r);
+        }
+        CHECK(r.out.state == FFR_ST_APPROACH);
+        want = ffr_stopping_speed(ffr_front_now(&cfg, &r.st.odo, r.st.ir_mm) - cfg.approach_stop_mm,
+                                  cfg.approach_speed_mm_s);
+        CHECK_NEAR(r.st.cmd_v_mm_s, want, 1e-3);
+        CHECK(r.st.cmd_v_mm_s <= cfg.approach_speed_mm_s && r.st.cmd_v_mm_s <= prev + 1e-3f);
+        if (front[k] >= cfg.approach_stop_mm + 0.5f * cfg.approach_speed_mm_s
+                             + 0.001f * FFR_IR_AGE_MS * cfg.approach_speed_mm_s) {
+            CHECK(r.st.cmd_v_mm_s == cfg.approach_speed_mm_s); /* full speed */
+        }
+        prev = r.st.cmd_v_mm_s;
+    }
+}
+
 SUITE(room,
       TEST_REF(no_doorway_line_on_the_way_in_fails_no_line),
       TEST_REF(no_doorway_line_on_the_way_out_fails_no_line),
@@ -433,4 +468,5 @@ SUITE(room,
       TEST_REF(a_front_ranger_folding_back_stops_the_approach),
       TEST_REF(a_scan_begun_just_past_a_near_flame_turns_on_to_it),
       TEST_REF(the_side_of_a_flame_and_a_flame_passed_by),
-      TEST_REF(the_line_sensor_past_the_doorway_line_on_the_way_out));
+      TEST_REF(the_line_sensor_past_the_doorway_line_on_the_way_out),
+      TEST_REF(the_approach_slows_for_its_own_front_stop));
