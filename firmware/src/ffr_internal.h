@@ -157,12 +157,6 @@ int ffr_turn_done(const ffr_config_t *cfg, const ffr_odometry_t *o, float target
  * default body's corner radius is 156 mm; 60 mm keeps the nominal route's
  * turns (at a wall ahead: front_stop_mm = 230 mm) out of it */
 #define FFR_TURN_MARGIN_MM 60.0f
-/* chosen: a turn in place brakes into its target at this share of the
- * wheels' ramp (turn.c, ffr_turn_yaw): 0.4 keeps the spin's end within the
- * speed loop's reach (0.25 and 0.6 measured: see docs/firmware.md) */
-#ifndef FFR_TURN_BRAKE_SHARE
-#define FFR_TURN_BRAKE_SHARE 0.4f
-#endif
 /* chosen (turn.c, ffr_turn_onset): a turn near a wall ahead counts on the
  * body rolling on this long (the realistic profile's slipping tracks: ~40 mm
  * from 200 mm/s), and waits for it to slow below FFR_TURN_ROLL_MM_S */

@@ -1,25 +1,11 @@
 /* Turning in place by odometry: the encoders tell how far the robot has rotated. */
 #include "ffr_internal.h"
 
-/*
- * The turn's rate: the proportional law (heading_kp) far off, and near the
- * target the rate from which the robot can still brake to rest there at
- * FFR_TURN_BRAKE_SHARE of the wheels' ramp (accel_mm_s2 at half the track):
- * w = sqrt(2 a |err|), whichever is faster, at most turn_rate_deg_s. The
- * proportional law alone ends every turn in an exponential tail (time
- * constant 1 / heading_kp = 0.25 s) that crawls through its last 10 degrees
- * at the minimum rate: ~0.3 s of each 90 degree turn.
- */
 float ffr_turn_yaw(const ffr_config_t *cfg, float heading, float target)
 {
     float err = target - heading; /* unwrapped: the turn goes the asked way round */
     float lim = cfg->turn_rate_deg_s * FFR_DEG;
     float w = ffr_clampf(cfg->heading_kp * err, -lim, lim);
-    float a = FFR_TURN_BRAKE_SHARE * cfg->accel_mm_s2 / (0.5f * cfg->track_width_mm);
-    float wb = ffr_sqrtf(2.0f * a * ffr_absf(err));
-    if (wb > ffr_absf(w)) {
-        w = ffr_clampf(err > 0.0f ? wb : -wb, -lim, lim);
-    }
     /* keep a minimum rate until the tolerance: below it the tracks stall */
     float w_min = 25.0f * FFR_DEG;
     if (ffr_absf(err) > 0.5f * cfg->turn_tol_deg * FFR_DEG && ffr_absf(w) < w_min) {
