@@ -343,7 +343,8 @@ typedef struct {
     uint32_t lost_since_ms;        /* the approached flame lost since (0: not lost) */
     uint8_t flame_near;            /* the approach has seen the flame near (room.c FLAME_NEAR) */
     uint8_t scan_trail;            /* the scan began with the flame on its trailing side (room_entry.c) */
-    uint8_t reserved[2];
+    uint8_t scan_lead;             /* the scan has seen the flame strong on its leading side (room.c) */
+    uint8_t fans_early;            /* the approach has the fans on: the flame within their reach (room.c) */
     ffr_scan_square_t square;      /* the walls seen in the scan (turn_calibration.c) */
     float entry_flame;             /* the strongest flame sum driving in (room.c) */
     int16_t deeper_mm;             /* how far the second scan point is beyond the first */

@@ -55,7 +55,8 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->room.exit_heading_rad = 0.0f;
     st->room.lost_since_ms = 0u;
     st->room.flame_near = 0;
-    st->room.reserved[0] = st->room.reserved[1] = 0;
+    st->room.scan_lead = 0u;
+    st->room.fans_early = 0u;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         st->ir_mm[i] = FFR_IR_NONE(cfg);
     }

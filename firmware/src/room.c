@@ -85,6 +85,12 @@ enum {
 /* counts: the flame's balance is taken over at least this sum (no division
  * by a sum near zero) */
 #define BAL_MIN_SUM 1.0f
+#ifndef SCAN_CROSS_X
+#define SCAN_CROSS_X 4.0f
+#endif
+#ifndef SCAN_CROSS_BAL
+#define SCAN_CROSS_BAL 0.25f
+#endif
 /* room_state_t.scan_trail before the scan's first tick */
 #define SCAN_TRAIL_UNKNOWN 2u
 /* chosen: a scan begun with the flame on its trailing side (room_entry.c)
@@ -192,10 +198,12 @@ static void enter(ffr_state_t *st, uint8_t p)
         r->best_front_mm = 0.0f;
         ffr_scan_sq_reset(&r->square);
         r->scan_trail = SCAN_TRAIL_UNKNOWN;
+        r->scan_lead = 0u;
     }
     if (p == RP_APPROACH) {
         ffr_ahead_reset(r);
     }
+    r->fans_early = 0u;
     if (p == RP_ENTER_IN) {
         r->entry_peak = 0.0f;
     }
@@ -338,6 +346,19 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
         r->best_heading_rad = st->odo.heading_rad;
         r->best_front_mm = ffr_front_distance(cfg, st->ir_mm);
     }
+    {
+        /* the flame's balance (+: on the leading side of the turn) */
+        float lead = dir * ((float)t->in->flame[0] - (float)t->in->flame[1]) / (sig > BAL_MIN_SUM ? sig : BAL_MIN_SUM);
+        if (sig >= SCAN_CROSS_X * cfg->flame_detect) {
+            if (lead > SCAN_CROSS_BAL) {
+                r->scan_lead = 1u;
+            } else if (r->scan_lead && lead < -SCAN_CROSS_BAL) {
+                return flame_found(st);
+            }
+        } else {
+            r->scan_lead = 0u;
+        }
+    }
     /* past the peak: stop early, unless a weak peak (below SCAN_SURE x
      * flame_detect) was seen facing a wall near ahead (SCAN_WALL_MM): it
      * may be the flame's image in that wall (white walls reflect) while
@@ -471,8 +492,23 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
             r->flame_found = 0;
             return RP_BACK_DRIVE;
         }
+        st->fan = 1; /* on from this tick: no break in the air */
         return RP_EXTINGUISH;
     }
+    if (r->fans_early && sig < FLAME_LOST_SHARE * cfg->flame_detect) {
+        /* out under the fans, run since the flame was within their reach:
+         * stop; the fans' phase confirms it out and watches it */
+        ffr_stop(st);
+        st->fan = 1;
+        r->flame_found = FOUND;
+        return RP_EXTINGUISH;
+    }
+    if (sig >= FLAME_REACH * cfg->flame_detect) {
+        /* within the fans' reach by its strength: on now, and on without a
+         * break into the fans' phase (the air counts from here) */
+        r->fans_early = 1u;
+    }
+    st->fan = r->fans_early;
     if (sig < FLAME_LOST_SHARE * cfg->flame_detect) {
         /* lost it (or it went out by itself): look again from here; a flame
          * seen near is watched (FFR_FLAME_LOST_MS) */
@@ -481,7 +517,17 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
         }
         return RP_SCAN;
     }
-    st->cmd_v_mm_s = ffr_proximity_speed(cfg, st->ir_mm, creep ? CREEP_SPEED_MM_S : cfg->approach_speed_mm_s);
+    if (creep) {
+        st->cmd_v_mm_s = ffr_proximity_speed(cfg, st->ir_mm, CREEP_SPEED_MM_S);
+    } else {
+        /* slowing for what is ahead to stop at the approach's own front stop
+         * (approach_stop_mm), where it is now (the reading's age off): the
+         * route's ramp (front_slow_mm to front_stop_mm, 35 % at its end) took
+         * the candle's own base, seen by the front ranger from the scan point
+         * on, for a wall and crawled the whole approach */
+        float ahead_mm = ffr_front_now(cfg, &st->odo, st->ir_mm) - cfg->approach_stop_mm;
+        st->cmd_v_mm_s = ffr_stopping_speed(ahead_mm, cfg->approach_speed_mm_s);
+    }
     if (detour != 0.0f) {
         /* around an obstacle: the flame's heading offset by the detour, and
          * slower while the corridor is not yet clear */

@@ -420,6 +420,125 @@ TEST(the_line_sensor_past_the_doorway_line_on_the_way_out)
 }
 
 
+TEST(the_approach_slows_for_its_own_front_stop)
+{
+    /* something ahead (a candle's base, a wall): the approach goes at its
+     * speed while braking at the stopping law would still stop it by
+     * approach_stop_mm (the reading's age counted), slower nearer; with the
+     * front at the route's old ramp (front_slow_mm to front_stop_mm) it no
+     * longer crawls */
+    static const float front[] = {700.0f, 450.0f, 350.0f, 300.0f, 260.0f, 230.0f, 210.0f};
+    unsigned k;
+    float prev = 1.0e9f;
+    for (k = 0; k < sizeof(front) / sizeof(front[0]); ++k) {
+        ffr_config_t cfg;
+        rig_t r;
+        int i;
+        float want;
+        ffr_config_default(&cfg);
+        rig_room_route(&cfg, 0);
+        CHECK(into_the_approach(&r, &cfg, NEAR_EACH));
+        front_reads(&r, &cfg, front[k] - cfg.ir_x_mm[FFR_IR_CF]);
+        for (i = 0; i < 3; ++i) {
+            rig_tick(&r);
+        }
+        CHECK(r.out.state == FFR_ST_APPROACH);
+        want = ffr_stopping_speed(ffr_front_now(&cfg, &r.st.odo, r.st.ir_mm) - cfg.approach_stop_mm,
+                                  cfg.approach_speed_mm_s);
+        CHECK_NEAR(r.st.cmd_v_mm_s, want, 1e-3);
+        CHECK(r.st.cmd_v_mm_s <= cfg.approach_speed_mm_s && r.st.cmd_v_mm_s <= prev + 1e-3f);
+        if (front[k] >= cfg.approach_stop_mm + 0.5f * cfg.approach_speed_mm_s
+                             + 0.001f * FFR_IR_AGE_MS * cfg.approach_speed_mm_s) {
+            CHECK(r.st.cmd_v_mm_s == cfg.approach_speed_mm_s); /* full speed */
+        }
+        prev = r.st.cmd_v_mm_s;
+    }
+}
+
+/* The scan's heading (degrees) when it decides, for a flame at 80 degrees whose
+ * sum peaks at 2 x peak_each and whose balance swings from the left sensor
+ * (leading: the scan turns left) to the right across +-20 degrees. */
+static float scan_decides_at(uint16_t peak_each)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    int i;
+    ffr_config_default(&cfg);
+    rig_room_route(&cfg, 0);
+    if (!into_the_scan(&r, &cfg)) {
+        return -1.0f;
+    }
+    for (i = 0; i < 600 && r.out.state == FFR_ST_SCAN; ++i) {
+        float deg = r.st.odo.heading_rad / FFR_DEG;
+        float sum = 2.0f * (float)DARK, b;
+        if (deg > 60.0f && deg < 100.0f) {
+            sum = 2.0f * ((float)peak_each - ((float)peak_each - (float)DARK) * (deg - 80.0f) * (deg - 80.0f) / 400.0f);
+        }
+        b = ffr_clampf((80.0f - deg) / 20.0f, -1.0f, 1.0f);
+        r.in.flame[0] = (uint16_t)(0.5f * sum * (1.0f + b) < (float)DARK ? (float)DARK : 0.5f * sum * (1.0f + b));
+        r.in.flame[1] = (uint16_t)(0.5f * sum * (1.0f - b) < (float)DARK ? (float)DARK : 0.5f * sum * (1.0f - b));
+        rig_tick(&r);
+        if (r.st.cmd_w_rad_s <= 0.0f) {
+            return deg; /* stopped: the scan has decided */
+        }
+    }
+    return 1.0e3f;
+}
+
+TEST(a_strong_flame_crossing_to_the_trailing_side_ends_the_scan)
+{
+    /* strong (>= 4 x flame_detect): the scan ends once the balance has gone
+     * from the leading side past the flame's heading to the trailing side
+     * (~5 degrees past it), well before the sum falls to 0.6 of its peak
+     * (12.6 degrees past); weak, the peak rule alone, as before */
+    float strong = scan_decides_at(NEAR_EACH);
+    float weak = scan_decides_at(300u);
+    CHECK(strong > 80.0f && strong < 88.0f);
+    CHECK(weak > 92.0f && weak < 100.0f);
+}
+
+TEST(the_fans_go_on_once_the_flame_is_within_their_reach)
+{
+    /* the approach: fans off with the flame near but not yet within the fans'
+     * reach by its strength (below 14 x flame_detect), on from there without a
+     * break into the fans' phase at the candle circle; a flame going out under
+     * them is the fans' phase's (confirmed out, then watched), not a new scan */
+    int out;
+    for (out = 0; out <= 1; ++out) {
+        ffr_config_t cfg;
+        rig_t r;
+        int i;
+        ffr_config_default(&cfg);
+        rig_room_route(&cfg, 0);
+        CHECK(into_the_approach(&r, &cfg, NEAR_EACH));
+        for (i = 0; i < 5; ++i) {
+            rig_tick(&r);
+            CHECK(r.out.state == FFR_ST_APPROACH && r.out.fan == 0);
+        }
+        r.in.flame[0] = r.in.flame[1] = 1300u; /* 2,600 counts over dark: > 14 x 170 */
+        rig_tick(&r);
+        CHECK(r.out.state == FFR_ST_APPROACH && r.out.fan == 1);
+        CHECK(r.st.cmd_v_mm_s > 0.0f); /* still driving on */
+        for (i = 0; i < 5; ++i) {
+            rig_tick(&r);
+            CHECK(r.out.fan == 1);
+        }
+        if (out) {
+            r.in.flame[0] = r.in.flame[1] = DARK;
+            rig_tick(&r);
+            CHECK(r.out.state == FFR_ST_EXTINGUISH && r.out.fan == 1);
+            CHECK(rig_run_until_state(&r, FFR_ST_VERIFY, 200));
+        } else {
+            rig_line(&r, 0, 3);
+            CHECK(r.out.state == FFR_ST_EXTINGUISH && r.out.fan == 1);
+            for (i = 0; i < 10; ++i) {
+                rig_tick(&r);
+                CHECK(r.out.fan == 1);
+            }
+        }
+    }
+}
+
 SUITE(room,
       TEST_REF(no_doorway_line_on_the_way_in_fails_no_line),
       TEST_REF(no_doorway_line_on_the_way_out_fails_no_line),
@@ -433,4 +552,7 @@ SUITE(room,
       TEST_REF(a_front_ranger_folding_back_stops_the_approach),
       TEST_REF(a_scan_begun_just_past_a_near_flame_turns_on_to_it),
       TEST_REF(the_side_of_a_flame_and_a_flame_passed_by),
-      TEST_REF(the_line_sensor_past_the_doorway_line_on_the_way_out));
+      TEST_REF(the_line_sensor_past_the_doorway_line_on_the_way_out),
+      TEST_REF(the_approach_slows_for_its_own_front_stop),
+      TEST_REF(a_strong_flame_crossing_to_the_trailing_side_ends_the_scan),
+      TEST_REF(the_fans_go_on_once_the_flame_is_within_their_reach));

@@ -162,6 +162,7 @@ TEST(a_turn_step_near_a_wall_does_not_drive_into_it)
     CHECK(r.out.state != FFR_ST_TURN); /* and the turn still ends */
 }
 
+
 SUITE(turn_room,
       TEST_REF(front_distance_is_projected_over_the_reading_age),
       TEST_REF(a_turn_backs_away_from_a_wall_inside_its_circle),
