@@ -340,6 +340,9 @@ static inline float bitsf(uint32_t u)
 }
 
 #define ABS_BITS 0x7FFFFFFFu
+#define AIM_PER_AXIS (FFR_ORIENT_BINS / 4) /* the bins nearest each of the four axes */
+typedef char aim_bins_in_quarters[(FFR_ORIENT_BINS % 4 == 0) ? 1 : -1];
+#define AIM_SHUT_LOOK 2 /* after the 3 bins (+-15 degrees) nearest each axis: all shut? (chosen) */
 
 static inline void keep_min_bits(uint32_t *m, uint32_t x) { *m = x < *m ? x : *m; }
 
@@ -417,31 +420,53 @@ static inline void aim_hit(aim_view_t *w, const aim_lim_t *l, float u0, float v0
 }
 
 /* the bins into the walls' frame (u along dir0, v along dir0 + 90 degrees,
- * from the sweep's centre), in place, once (the centre's tick): the aim's
- * scan then turns none (its tick's budget). A bin without a hit: far off
- * both axes */
+ * from the sweep's centre), once (the centre's tick): the aim's scan then
+ * turns none (its tick's budget). And in the aim's order: out from the four
+ * axes, nearest first (slot 4 i + q: axis q's bin at offset 0, -1, +1, -2,
+ * ... for i = 0, 1, 2, ...), so that the aim sees first the bins that shut
+ * ways. A bin without a hit: far off both axes */
 void ffr_orient_to_walls(ffr_home_orient_t *o, float dir0)
 {
     const float c = ffr_cosf(dir0), s = ffr_sinf(dir0);
-    int b;
-    for (b = 0; b < FFR_ORIENT_BINS; ++b) {
-        float x = o->bin_x_mm[b], y = o->bin_y_mm[b];
-        if (o->bin_mm[b] == BIN_NONE) {
-            o->bin_x_mm[b] = 65535.0f;
-            o->bin_y_mm[b] = 65535.0f;
-        } else {
-            o->bin_x_mm[b] = x * c + y * s;
-            o->bin_y_mm[b] = y * c - x * s;
+    const int base = bin_of(dir0);
+    float u[FFR_ORIENT_BINS], v[FFR_ORIENT_BINS];
+    int i, q;
+    for (i = 0; i < FFR_ORIENT_BINS; ++i) {
+        float x = o->bin_x_mm[i], y = o->bin_y_mm[i];
+        int none = o->bin_mm[i] == BIN_NONE;
+        u[i] = none ? 65535.0f : x * c + y * s;
+        v[i] = none ? 65535.0f : y * c - x * s;
+    }
+    for (i = 0; i < AIM_PER_AXIS; ++i) {
+        int b = base + ((i & 1) ? -(i + 1) / 2 : i / 2);
+        for (q = 0; q < 4; ++q, b += AIM_PER_AXIS) {
+            int from = b < 0 ? b + FFR_ORIENT_BINS : b >= FFR_ORIENT_BINS ? b - FFR_ORIENT_BINS : b;
+            o->bin_x_mm[4 * i + q] = u[from];
+            o->bin_y_mm[4 * i + q] = v[from];
         }
     }
+}
+
+/* way k's sides in the view: left, right (along u: left is +v ahead +u,
+ * -v ahead -u; along v: left is -u ahead +v, +u ahead -v) */
+static const uint8_t AIM_LEFT[4] = {3u, 5u, 0u, 6u};
+static const uint8_t AIM_RIGHT[4] = {2u, 7u, 1u, 4u};
+
+/* way k shut: within a hallway's width ahead, no room for the body's path
+ * band between the walls either side of its axis (a wall across it, or a
+ * wall's end in front of the body). A narrow hallway with the body off its
+ * middle is a way: the wall following takes the body to its line */
+static int aim_shut(const aim_view_t *w, const ffr_config_t *cfg, int k)
+{
+    float left = bitsf(w->side[AIM_LEFT[k]]), right = bitsf(w->side[AIM_RIGHT[k]]);
+    return left < cfg->body_half_width_mm || right < cfg->body_half_width_mm ||
+           left + right < 2.0f * (cfg->body_half_width_mm + BAND_MARGIN_MM);
 }
 
 /* the way by the rule, from the view */
 static int aim_decide(const ffr_config_t *cfg, const aim_view_t *w, float dir0, float heading)
 {
-    /* per way k: its ahead quadrant bits, and which of them is its left */
-    static const uint8_t ahead_pos[4] = {1u, 1u, 0u, 0u}; /* ahead along + (k = 0, 1) or - */
-    float band = cfg->body_half_width_mm + BAND_MARGIN_MM;
+    static const uint8_t left_pos[4] = {1u, 0u, 0u, 1u}; /* way k's left on the + side of its cross axis */
     int k, best = -1;
     int best_score = -1;
     float best_turn = 0.0f, best_beside = 65535.0f;
@@ -449,33 +474,17 @@ static int aim_decide(const ffr_config_t *cfg, const aim_view_t *w, float dir0, 
     for (k = 0; k < 4; ++k) {
         int left_wall = w->wall[(k + 1) & 3];
         int right_wall = w->wall[(k + 3) & 3];
-        int score, a = ahead_pos[k], lp;
-        float left, right, beside = 0.0f;
+        int score;
+        float beside = 0.0f;
         float turn = ffr_absf(ffr_wrap_pi(dir0 + (float)k * 0.5f * FFR_PI - heading));
-        if ((k & 1) == 0) {
-            /* along u: left is +v ahead +u (k = 0), -v ahead -u (k = 2) */
-            lp = a;
-            left = bitsf(w->side[2 * a + lp]);
-            right = bitsf(w->side[2 * a + 1 - lp]);
-        } else {
-            /* along v: left is -u ahead +v (k = 1), +u ahead -v (k = 3) */
-            lp = 1 - a;
-            left = bitsf(w->side[4 + 2 * lp + a]);
-            right = bitsf(w->side[4 + 2 * (1 - lp) + a]);
-        }
         /* with a wall side: how far ahead (or behind) of the axle its wall
          * is nearest; a hallway's wall is beside the axle, a wall's end at
          * a junction starts ahead of it */
         if (cfg->home_wall_side == FFR_HOME_WALL_LEFT || cfg->home_wall_side == FFR_HOME_WALL_RIGHT) {
-            int wp = side == 0 ? lp : 1 - lp; /* the wall side's sign (+1: 1) on the cross axis */
+            int wp = side == 0 ? left_pos[k] : 1 - left_pos[k]; /* the wall side: + of the cross axis? */
             beside = bitsf(w->beside[((k & 1) ? 2 : 0) + wp]);
         }
-        if (left < cfg->body_half_width_mm || right < cfg->body_half_width_mm || left + right < 2.0f * band) {
-            /* within a hallway's width ahead, no room for the body's path
-             * band between the walls either side of its axis (a wall across
-             * it, or a wall's end in front of the body): not the way out. A
-             * narrow hallway with the body off its middle is a way: the
-             * wall following takes the body to its line */
+        if (aim_shut(w, cfg, k)) {
             continue;
         }
         if (cfg->home_wall_side == FFR_HOME_WALL_LEFT) {
@@ -513,10 +522,20 @@ int ffr_orient_aim(const ffr_home_orient_t *o, const ffr_config_t *cfg, float di
     const float c = ffr_cosf(dir0), s = ffr_sinf(dir0);
     aim_view_t w;
     aim_lim_t l;
-    int b;
+    int b, k;
     aim_start(&w, &l, cfg, cx * c + cy * s, cy * c - cx * s);
     for (b = 0; b < FFR_ORIENT_BINS; ++b) {
         aim_hit(&w, &l, o->bin_x_mm[b], o->bin_y_mm[b]);
+        if (b == 4 * AIM_SHUT_LOOK + 3) {
+            /* every way shut by then stays shut (the nearest hits only get
+             * nearer): none open, the rest unseen (walls close all round
+             * cost every bin every test: the tick's budget) */
+            for (k = 0; k < 4 && aim_shut(&w, cfg, k); ++k) {
+            }
+            if (k == 4) {
+                return -1;
+            }
+        }
     }
     return aim_decide(cfg, &w, dir0, heading);
 }
