@@ -350,18 +350,20 @@ static inline void keep_min_bits(uint32_t *m, uint32_t x) { *m = x < *m ? x : *m
  * fbits), and (cu, cv): where the robot is, in the walls' frame from the
  * sweep's centre */
 typedef struct {
-    uint32_t two_band, reach, near, axis;
+    uint32_t two_band, reach, near, axis, ahead;
     float band, cu, cv;
 } aim_lim_t;
 
 static void aim_start(aim_view_t *w, aim_lim_t *l, const ffr_config_t *cfg, float cu, float cv)
 {
-    float near = cfg->open_mm, two_band;
+    float near = cfg->open_mm, two_band, reach;
     int i;
     l->band = cfg->body_half_width_mm + BAND_MARGIN_MM;
     two_band = 2.0f * l->band;
     l->two_band = fbits(two_band);
-    l->reach = fbits(2.0f * cfg->wall_target_mm + cfg->body_half_width_mm);
+    reach = 2.0f * cfg->wall_target_mm + cfg->body_half_width_mm;
+    l->reach = fbits(reach);
+    l->ahead = fbits(near > reach ? near : reach); /* farther ahead: neither side nor wall */
     l->near = fbits(near);
     l->axis = fbits(near > two_band ? near : two_band); /* farther off an axis: none of its tests */
     l->cu = cu;
@@ -390,11 +392,13 @@ static inline void aim_hit(aim_view_t *w, const aim_lim_t *l, float u0, float v0
         if (av < l->near) {
             keep_min_bits(&w->beside[1u - nv], au);
         }
-        if (au < l->reach) {
+        if (au < l->ahead) {
             g = fbits(v0 - l->cv + RANGE_SHORT_FRAC * v0) & ABS_BITS; /* as far off as it may be */
             g = g > av ? g : av;
             if (g < l->two_band) {
-                keep_min_bits(&w->side[2u * (1u - nu) + 1u - nv], g);
+                if (au < l->reach) {
+                    keep_min_bits(&w->side[2u * (1u - nu) + 1u - nv], g);
+                }
                 if (au < l->near && bitsf(g) < l->band - AIM_BAND_SLOPE * bitsf(au)) {
                     w->wall[2u * nu] = 1u;
                 }
@@ -406,11 +410,13 @@ static inline void aim_hit(aim_view_t *w, const aim_lim_t *l, float u0, float v0
         if (au < l->near) {
             keep_min_bits(&w->beside[3u - nu], av);
         }
-        if (av < l->reach) {
+        if (av < l->ahead) {
             g = fbits(u0 - l->cu + RANGE_SHORT_FRAC * u0) & ABS_BITS;
             g = g > au ? g : au;
             if (g < l->two_band) {
-                keep_min_bits(&w->side[4u + 2u * (1u - nu) + 1u - nv], g);
+                if (av < l->reach) {
+                    keep_min_bits(&w->side[4u + 2u * (1u - nu) + 1u - nv], g);
+                }
                 if (av < l->near && bitsf(g) < l->band - AIM_BAND_SLOPE * bitsf(av)) {
                     w->wall[1u + 2u * nv] = 1u;
                 }

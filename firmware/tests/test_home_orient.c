@@ -360,7 +360,8 @@ TEST(the_aim_decides_as_aimints_one_tick_aim)
     /* random junctions: up to four walls' stretches at random distances
      * (some inside a hallway's width, some off the axes, a few bins empty),
      * read 0.75..1 of their distance; random walls' direction, heading and
-     * robot offset, each wall side rule */
+     * robot offset, each wall side rule, open_mm below and above a
+     * hallway's width (560 mm) */
     ffr_config_t cfg;
     ffr_home_orient_t o;
     ffr_odometry_t odo;
@@ -376,6 +377,8 @@ TEST(the_aim_decides_as_aimints_one_tick_aim)
         int b, r, want;
         cfg.home_wall_side = (uint8_t)(n % 3 == 0 ? FFR_HOME_WALL_LEFT : n % 3 == 1 ? FFR_HOME_WALL_RIGHT
                                                                                     : FFR_HOME_WALL_ANY);
+        /* a team's calibration may have open_mm beyond a hallway's width */
+        cfg.open_mm = n % 5 == 4 ? 650.0f : 400.0f;
         ffr_odometry_reset(&odo);
         ffr_orient_reset(&o, &odo);
         /* in the walls' frame, then turned by dir0 into odometry's */
