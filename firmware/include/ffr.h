@@ -394,7 +394,9 @@ typedef struct {
     float anchor_y_mm[FFR_IR_COUNT];
     float c4, s4, w;               /* sum of len * (cos, sin)(4 * segment direction), sum of len */
     uint16_t bin_mm[FFR_ORIENT_BINS]; /* nearest hit from the sweep's centre per bin (0xFFFF none) */
-    float bin_x_mm[FFR_ORIENT_BINS];  /* and where it is, from the sweep's centre */
+    float bin_x_mm[FFR_ORIENT_BINS];  /* and where it is, from the sweep's centre; from the centre's
+                                         tick on, in the walls' frame and the aim's order
+                                         (ffr_orient_to_walls; bin_mm as swept) */
     float bin_y_mm[FFR_ORIENT_BINS];
     float probe_mm[FFR_IR_COUNT];  /* the probed rangers' readings when the last escape began */
 } ffr_home_orient_t;

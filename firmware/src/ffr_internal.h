@@ -340,6 +340,14 @@ void ffr_orient_free4_cone(const ffr_home_orient_t *o, float band_mm, float slop
  * the walls, dir0 + k * 90 degrees, by the home_wall_side rule; -1 none open. */
 int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
                       float cy);
+/* the bins into the walls' frame (x along dir0, y along dir0 + 90 degrees;
+ * a bin without a hit far off both), in place: done once on the centre's
+ * tick, so that the aim's tick turns none */
+void ffr_orient_to_walls(ffr_home_orient_t *o, float dir0);
+/* ffr_orient_choose of bins already in the walls' frame (ffr_orient_to_walls);
+ * (cx, cy) as there, in odometry's frame */
+int ffr_orient_aim(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
+                   float cy);
 /* Where to stand before setting off: (dx, dy) mm from (cx, cy) that puts a wall
  * straight across an axis, within a hallway's width of the body's side
  * (2 x wall_target_mm + body_half_width_mm), at wall_target_mm (the nearer

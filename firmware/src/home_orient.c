@@ -65,6 +65,12 @@
 /* where to stand goes by walls straight across each axis (a band this wide
  * each side), not by a wall's end off to the side at a junction */
 #define CENTRE_BAND_MM 40.0f
+/* the aim's bands: a hit counts in one only if it is there also as far out
+ * along its ray as an uncalibrated GP2D12 may read short (its datasheet
+ * spread: 0.25..0.55 V at 80 cm, swing +-12.5 %: 20-30 % short at 15-40 cm) */
+#ifndef RANGE_SHORT_FRAC
+#define RANGE_SHORT_FRAC 0.25f
+#endif
 
 /* room to turn in place: the body's farthest corner plus this (chosen: the
  * rangers' noise at 10-20 cm is a few mm; 20 mm leaves room for it) */
@@ -289,21 +295,203 @@ void ffr_orient_free4_cone(const ffr_home_orient_t *o, float band, float slope, 
     }
 }
 
-int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
-                      float cy)
+/* The aim's view of the four ways k (dir0 + k * 90 degrees), from (cx, cy),
+ * in the walls' frame (u along dir0, v along dir0 + 90). Each hit is taken
+ * as read and as far out along its ray from the sweep's centre as if read
+ * RANGE_SHORT_FRAC short (lu, lv: the farther of the two from each axis):
+ * - wall[j] (j: +u, +v, -u, -v): a hit ahead along that axis within
+ *   open_mm, in the body's path band (narrowing with distance) either way:
+ *   a wall beside the ways square to it;
+ * - side[q]: of the hits within a hallway's width ahead along u (`reach`),
+ *   the nearest to the u axis, as far out as it may be, per quadrant q
+ *   (u > 0, v > 0); side[4 + q] the same along v;
+ * - beside[i]: of the hits within open_mm of the u axis, the nearest to
+ *   the axle along u, on the axis' +v side (i = 1) or not (0); beside[2 + i]
+ *   the same along v, on its +u side (i = 1) or not.
+ * One pass over the bins, each bin's sums and tests once (the tick's
+ * budget: a way's view each would cost four times it). */
+typedef struct {
+    uint32_t side[8];   /* as fbits (below) */
+    uint32_t beside[4];
+    uint8_t wall[4];
+} aim_view_t;
+
+/* A float's bits, and back. Non-negative floats order as their bits do
+ * (IEEE 754): the aim's scan compares distances as integers (one
+ * instruction, not a compare, a flags move and a branch's worth: the tick's
+ * budget) and takes |x| and x's sign from its bits. */
+typedef union {
+    float f;
+    uint32_t u;
+} fbits_t;
+
+static inline uint32_t fbits(float x)
 {
-    float free_mm[4];
+    fbits_t t;
+    t.f = x;
+    return t.u;
+}
+
+static inline float bitsf(uint32_t u)
+{
+    fbits_t t;
+    t.u = u;
+    return t.f;
+}
+
+#define ABS_BITS 0x7FFFFFFFu
+#define AIM_PER_AXIS (FFR_ORIENT_BINS / 4) /* the bins nearest each of the four axes */
+typedef char aim_bins_in_quarters[(FFR_ORIENT_BINS % 4 == 0) ? 1 : -1];
+#define AIM_SHUT_LOOK 2 /* after the 3 bins (+-15 degrees) nearest each axis: all shut? (chosen) */
+
+static inline void keep_min_bits(uint32_t *m, uint32_t x) { *m = x < *m ? x : *m; }
+
+/* the limits a hit is tested against (bits of non-negative floats, as
+ * fbits), and (cu, cv): where the robot is, in the walls' frame from the
+ * sweep's centre */
+typedef struct {
+    uint32_t two_band, reach, near, axis, ahead;
+    float band, cu, cv;
+} aim_lim_t;
+
+static void aim_start(aim_view_t *w, aim_lim_t *l, const ffr_config_t *cfg, float cu, float cv)
+{
+    float near = cfg->open_mm, two_band, reach;
+    int i;
+    l->band = cfg->body_half_width_mm + BAND_MARGIN_MM;
+    two_band = 2.0f * l->band;
+    l->two_band = fbits(two_band);
+    reach = 2.0f * cfg->wall_target_mm + cfg->body_half_width_mm;
+    l->reach = fbits(reach);
+    l->ahead = fbits(near > reach ? near : reach); /* farther ahead: neither side nor wall */
+    l->near = fbits(near);
+    l->axis = fbits(near > two_band ? near : two_band); /* farther off an axis: none of its tests */
+    l->cu = cu;
+    l->cv = cv;
+    for (i = 0; i < 8; ++i) {
+        w->side[i] = fbits(65535.0f);
+    }
+    for (i = 0; i < 4; ++i) {
+        w->beside[i] = fbits(65535.0f);
+        w->wall[i] = 0u;
+    }
+}
+
+/* one hit (u0, v0: in the walls' frame from the sweep's centre) into the
+ * view. nu, nv: the hit on the -u, -v side of the robot's axes (-0: -).
+ * A side's nearest hit counts only below twice the band (farther, neither
+ * the body's half width nor the band's room between the sides depends on
+ * it): a hit off an axis by that much and by open_mm skips that axis' tests */
+static inline void aim_hit(aim_view_t *w, const aim_lim_t *l, float u0, float v0)
+{
+    uint32_t bu = fbits(u0 - l->cu), bv = fbits(v0 - l->cv);
+    uint32_t au = bu & ABS_BITS, av = bv & ABS_BITS, g;
+    uint32_t nu = bu >> 31, nv = bv >> 31;
+    if (av < l->axis) {
+        /* near the u axis: the ways along u */
+        if (av < l->near) {
+            keep_min_bits(&w->beside[1u - nv], au);
+        }
+        if (au < l->ahead) {
+            g = fbits(v0 - l->cv + RANGE_SHORT_FRAC * v0) & ABS_BITS; /* as far off as it may be */
+            g = g > av ? g : av;
+            if (g < l->two_band) {
+                if (au < l->reach) {
+                    keep_min_bits(&w->side[2u * (1u - nu) + 1u - nv], g);
+                }
+                if (au < l->near && bitsf(g) < l->band - AIM_BAND_SLOPE * bitsf(au)) {
+                    w->wall[2u * nu] = 1u;
+                }
+            }
+        }
+    }
+    if (au < l->axis) {
+        /* near the v axis: the ways along v */
+        if (au < l->near) {
+            keep_min_bits(&w->beside[3u - nu], av);
+        }
+        if (av < l->ahead) {
+            g = fbits(u0 - l->cu + RANGE_SHORT_FRAC * u0) & ABS_BITS;
+            g = g > au ? g : au;
+            if (g < l->two_band) {
+                if (av < l->reach) {
+                    keep_min_bits(&w->side[4u + 2u * (1u - nu) + 1u - nv], g);
+                }
+                if (av < l->near && bitsf(g) < l->band - AIM_BAND_SLOPE * bitsf(av)) {
+                    w->wall[1u + 2u * nv] = 1u;
+                }
+            }
+        }
+    }
+}
+
+/* the bins into the walls' frame (u along dir0, v along dir0 + 90 degrees,
+ * from the sweep's centre), once (the centre's tick): the aim's scan then
+ * turns none (its tick's budget). And in the aim's order: out from the four
+ * axes, nearest first (slot 4 i + q: axis q's bin at offset 0, -1, +1, -2,
+ * ... for i = 0, 1, 2, ...), so that the aim sees first the bins that shut
+ * ways. A bin without a hit: far off both axes */
+void ffr_orient_to_walls(ffr_home_orient_t *o, float dir0)
+{
+    const float c = ffr_cosf(dir0), s = ffr_sinf(dir0);
+    const int base = bin_of(dir0);
+    float u[FFR_ORIENT_BINS], v[FFR_ORIENT_BINS];
+    int i, q;
+    for (i = 0; i < FFR_ORIENT_BINS; ++i) {
+        float x = o->bin_x_mm[i], y = o->bin_y_mm[i];
+        int none = o->bin_mm[i] == BIN_NONE;
+        u[i] = none ? 65535.0f : x * c + y * s;
+        v[i] = none ? 65535.0f : y * c - x * s;
+    }
+    for (i = 0; i < AIM_PER_AXIS; ++i) {
+        int b = base + ((i & 1) ? -(i + 1) / 2 : i / 2);
+        for (q = 0; q < 4; ++q, b += AIM_PER_AXIS) {
+            int from = b < 0 ? b + FFR_ORIENT_BINS : b >= FFR_ORIENT_BINS ? b - FFR_ORIENT_BINS : b;
+            o->bin_x_mm[4 * i + q] = u[from];
+            o->bin_y_mm[4 * i + q] = v[from];
+        }
+    }
+}
+
+/* way k's sides in the view: left, right (along u: left is +v ahead +u,
+ * -v ahead -u; along v: left is -u ahead +v, +u ahead -v) */
+static const uint8_t AIM_LEFT[4] = {3u, 5u, 0u, 6u};
+static const uint8_t AIM_RIGHT[4] = {2u, 7u, 1u, 4u};
+
+/* way k shut: within a hallway's width ahead, no room for the body's path
+ * band between the walls either side of its axis (a wall across it, or a
+ * wall's end in front of the body). A narrow hallway with the body off its
+ * middle is a way: the wall following takes the body to its line */
+static int aim_shut(const aim_view_t *w, const ffr_config_t *cfg, int k)
+{
+    float left = bitsf(w->side[AIM_LEFT[k]]), right = bitsf(w->side[AIM_RIGHT[k]]);
+    return left < cfg->body_half_width_mm || right < cfg->body_half_width_mm ||
+           left + right < 2.0f * (cfg->body_half_width_mm + BAND_MARGIN_MM);
+}
+
+/* the way by the rule, from the view */
+static int aim_decide(const ffr_config_t *cfg, const aim_view_t *w, float dir0, float heading)
+{
+    static const uint8_t left_pos[4] = {1u, 0u, 0u, 1u}; /* way k's left on the + side of its cross axis */
     int k, best = -1;
     int best_score = -1;
-    float best_turn = 0.0f;
-    ffr_orient_free4_cone(o, cfg->body_half_width_mm + BAND_MARGIN_MM, AIM_BAND_SLOPE, dir0, cx, cy, free_mm);
+    float best_turn = 0.0f, best_beside = 65535.0f;
+    int side = cfg->home_wall_side == FFR_HOME_WALL_LEFT ? 0 : 1;
     for (k = 0; k < 4; ++k) {
-        int left_wall = free_mm[(k + 1) & 3] < cfg->open_mm;
-        int right_wall = free_mm[(k + 3) & 3] < cfg->open_mm;
+        int left_wall = w->wall[(k + 1) & 3];
+        int right_wall = w->wall[(k + 3) & 3];
         int score;
+        float beside = 0.0f;
         float turn = ffr_absf(ffr_wrap_pi(dir0 + (float)k * 0.5f * FFR_PI - heading));
-        if (free_mm[k] < 2.0f * cfg->wall_target_mm + cfg->body_half_width_mm) {
-            continue; /* a wall within a hallway's width ahead: not the way out */
+        /* with a wall side: how far ahead (or behind) of the axle its wall
+         * is nearest; a hallway's wall is beside the axle, a wall's end at
+         * a junction starts ahead of it */
+        if (cfg->home_wall_side == FFR_HOME_WALL_LEFT || cfg->home_wall_side == FFR_HOME_WALL_RIGHT) {
+            int wp = side == 0 ? left_pos[k] : 1 - left_pos[k]; /* the wall side: + of the cross axis? */
+            beside = bitsf(w->beside[((k & 1) ? 2 : 0) + wp]);
+        }
+        if (aim_shut(w, cfg, k)) {
+            continue;
         }
         if (cfg->home_wall_side == FFR_HOME_WALL_LEFT) {
             score = left_wall;
@@ -312,13 +500,50 @@ int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float
         } else {
             score = left_wall + right_wall;
         }
-        if (score > best_score || (score == best_score && turn < best_turn)) {
+        if (score > best_score ||
+            (score == best_score && (beside < best_beside - SHIFT_TOL_MM ||
+                                     (beside <= best_beside + SHIFT_TOL_MM && turn < best_turn)))) {
             best = k;
             best_score = score;
             best_turn = turn;
+            best_beside = beside;
         }
     }
     return best;
+}
+
+int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
+                      float cy)
+{
+    /* a copy turned into the walls' frame: the firmware turns its own once,
+     * on the centre's tick (ffr_orient_to_walls), and aims from it */
+    ffr_home_orient_t w = *o;
+    ffr_orient_to_walls(&w, dir0);
+    return ffr_orient_aim(&w, cfg, dir0, heading, cx, cy);
+}
+
+int ffr_orient_aim(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
+                   float cy)
+{
+    const float c = ffr_cosf(dir0), s = ffr_sinf(dir0);
+    aim_view_t w;
+    aim_lim_t l;
+    int b, k;
+    aim_start(&w, &l, cfg, cx * c + cy * s, cy * c - cx * s);
+    for (b = 0; b < FFR_ORIENT_BINS; ++b) {
+        aim_hit(&w, &l, o->bin_x_mm[b], o->bin_y_mm[b]);
+        if (b == 4 * AIM_SHUT_LOOK + 3) {
+            /* every way shut by then stays shut (the nearest hits only get
+             * nearer): none open, the rest unseen (walls close all round
+             * cost every bin every test: the tick's budget) */
+            for (k = 0; k < 4 && aim_shut(&w, cfg, k); ++k) {
+            }
+            if (k == 4) {
+                return -1;
+            }
+        }
+    }
+    return aim_decide(cfg, &w, dir0, heading);
 }
 
 void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
@@ -781,7 +1006,7 @@ static void aim(ffr_state_t *st)
 {
     ffr_home_orient_t *o = &st->orient;
     float cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
-    int k = ffr_orient_choose(o, &st->cfg, o->dir0_rad, st->odo.heading_rad, cx, cy);
+    int k = ffr_orient_aim(o, &st->cfg, o->dir0_rad, st->odo.heading_rad, cx, cy);
     float dir = o->dir0_rad + (float)(k < 0 ? 0 : k) * 0.5f * FFR_PI;
     if (k < 0) {
         /* nothing open: the square direction nearest the one placed in */
@@ -883,6 +1108,8 @@ int ffr_orient_step(ffr_state_t *st)
                 return 0;
             }
         }
+        /* the aim next tick or after the shift: its bins turned now */
+        ffr_orient_to_walls(o, o->dir0_rad);
         if (dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
             float dir = ffr_atan2f(dy, dx);
             float fwd = nearest(st->odo.heading_rad, dir);

@@ -183,6 +183,260 @@ TEST(the_route_direction_by_the_wall_side_rule)
     CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) == -1);
 }
 
+/* bins filled by hand: a wall's stretch from (x0, y0) to (x1, y1), every
+ * hit read `f` times its distance (a ranger reading short: f < 1) */
+static void add_stretch(ffr_home_orient_t *o, float x0, float y0, float x1, float y1, float f)
+{
+    int k, n = 200;
+    for (k = 0; k <= n; ++k) {
+        float x = f * (x0 + (x1 - x0) * (float)k / (float)n), y = f * (y0 + (y1 - y0) * (float)k / (float)n);
+        float r = ffr_sqrtf(x * x + y * y), a = ffr_atan2f(y, x);
+        int bin = (int)((a < 0.0f ? a + 2.0f * PI_F : a) / (2.0f * PI_F / (float)FFR_ORIENT_BINS));
+        if (bin >= FFR_ORIENT_BINS) {
+            bin = FFR_ORIENT_BINS - 1;
+        }
+        if (r < 800.0f && r < (float)o->bin_mm[bin]) {
+            o->bin_mm[bin] = (uint16_t)r;
+            o->bin_x_mm[bin] = x;
+            o->bin_y_mm[bin] = y;
+        }
+    }
+}
+
+TEST(a_junction_read_short_keeps_the_way_with_its_wall)
+{
+    /* the 2004 home's junction: the outer wall 280 mm east, the hallway's
+     * wall 230 mm south, the island room's corner 150 mm west and 225 mm
+     * north of the robot (its side runs north, its bottom west). North is
+     * open with the outer wall on the right; west is open with no wall
+     * beside the body on its right (the island's bottom starts 150 mm on).
+     * Every ranger reads 20 % short, as an uncalibrated GP2D12 may: the
+     * island's side is seen 120 mm off the north axis, inside the body's
+     * path band (130 mm), and its corner 120 mm along west, as if beside. */
+    ffr_config_t cfg;
+    ffr_home_orient_t o;
+    ffr_odometry_t odo;
+    float f;
+    ffr_config_default(&cfg);
+    cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+    for (f = 0.8f; f <= 1.01f; f += 0.1f) {
+        ffr_odometry_reset(&odo);
+        ffr_orient_reset(&o, &odo);
+        add_stretch(&o, 280.0f, -800.0f, 280.0f, 800.0f, f);
+        add_stretch(&o, -800.0f, -230.0f, 280.0f, -230.0f, f);
+        add_stretch(&o, -150.0f, 225.0f, -150.0f, 800.0f, f);
+        add_stretch(&o, -800.0f, 225.0f, -150.0f, 225.0f, f);
+        /* north (k = 1), from any heading */
+        CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) == 1);
+        CHECK(ffr_orient_choose(&o, &cfg, 0.0f, PI_F, 0.0f, 0.0f) == 1);
+        CHECK(ffr_orient_choose(&o, &cfg, 0.0f, -0.5f * PI_F, 0.0f, 0.0f) == 1);
+        /* a wall across north 400 mm on (read short too) shuts it: west,
+         * its island wall on the right, is then the one open way */
+        add_stretch(&o, -800.0f, 400.0f, 800.0f, 400.0f, f);
+        CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) == 2);
+    }
+}
+
+TEST(a_narrow_hallway_off_its_middle_is_a_way)
+{
+    /* the junction again, the hallway north narrowed (a jittered arena):
+     * the island's side read 90 mm west of the body's axis, 112 mm if read
+     * 25 % short: inside its path band (130 mm) either way, clear of the
+     * body (100 mm) as far out as it may be; the outer wall 255 mm east.
+     * North is still the way (the wall following takes the body to its
+     * line, 230 mm off the outer wall); west, with no wall beside the body
+     * on its right, is not. */
+    ffr_config_t cfg;
+    ffr_home_orient_t o;
+    ffr_odometry_t odo;
+    ffr_config_default(&cfg);
+    cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+    ffr_odometry_reset(&odo);
+    ffr_orient_reset(&o, &odo);
+    add_stretch(&o, 255.0f, -800.0f, 255.0f, 800.0f, 1.0f);
+    add_stretch(&o, -800.0f, -230.0f, 255.0f, -230.0f, 1.0f);
+    add_stretch(&o, -90.0f, 175.0f, -90.0f, 800.0f, 1.0f);
+    add_stretch(&o, -800.0f, 175.0f, -90.0f, 175.0f, 1.0f);
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) == 1);
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, PI_F, 0.0f, 0.0f) == 1);
+    /* standing 40 mm farther west, the island's corner 50 mm off the axis
+     * (62 mm if read short): in front of the body, north is shut; the only
+     * open way is west */
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.5f * PI_F, -40.0f, 0.0f) == 2);
+}
+
+/* aimint's one-tick aim (branch aimint, 4d61471, AIM_PARTS 1): the
+ * reference the firmware's faster scan (its bins turned into the walls'
+ * frame once, distances compared by their bits, the hits beyond twice the
+ * band off an axis skipped) must decide as */
+static int ref_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
+                      float cy)
+{
+    float acc[20];
+    float band = cfg->body_half_width_mm + 30.0f, grow = 0.25f, slope = 0.0875f;
+    float reach = 2.0f * cfg->wall_target_mm + cfg->body_half_width_mm, near = cfg->open_mm;
+    float c = ffr_cosf(dir0), s = ffr_sinf(dir0), cu = cx * c + cy * s, cv = cy * c - cx * s;
+    float best_turn = 0.0f, best_beside = 65535.0f;
+    int b, i, k, best = -1, best_score = -1, side = cfg->home_wall_side == FFR_HOME_WALL_LEFT ? 0 : 1;
+    for (i = 0; i < 20; ++i) {
+        acc[i] = 65535.0f;
+    }
+#define REF_MIN(i, x) acc[i] = (x) < acc[i] ? (x) : acc[i]
+    for (b = 0; b < FFR_ORIENT_BINS; ++b) {
+        float u0, v0, u, v, au, av, lu, lv, gu, gv;
+        if (o->bin_mm[b] == 0xFFFFu) {
+            continue;
+        }
+        u0 = o->bin_x_mm[b] * c + o->bin_y_mm[b] * s;
+        v0 = o->bin_y_mm[b] * c - o->bin_x_mm[b] * s;
+        u = u0 - cu;
+        v = v0 - cv;
+        gu = ffr_absf(u + grow * u0);
+        gv = ffr_absf(v + grow * v0);
+        au = ffr_absf(u);
+        av = ffr_absf(v);
+        lu = gu > au ? gu : au;
+        lv = gv > av ? gv : av;
+        if (lv < band - slope * au) {
+            REF_MIN(u > 0.0f ? 0 : 2, au);
+        }
+        if (lu < band - slope * av) {
+            REF_MIN(v > 0.0f ? 1 : 3, av);
+        }
+        if (au < reach) {
+            REF_MIN(4 + 2 * (u > 0.0f ? 0 : 2) + ((v > 0.0f) == (u > 0.0f) ? 0 : 1), lv);
+        }
+        if (av < reach) {
+            REF_MIN(4 + 2 * (v > 0.0f ? 1 : 3) + ((u < 0.0f) == (v > 0.0f) ? 0 : 1), lu);
+        }
+        if (av < near) {
+            REF_MIN(12 + (v > 0.0f ? 0 : 1), au);
+            REF_MIN(12 + 4 + (v < 0.0f ? 0 : 1), au);
+        }
+        if (au < near) {
+            REF_MIN(12 + 2 + (u < 0.0f ? 0 : 1), av);
+            REF_MIN(12 + 6 + (u > 0.0f ? 0 : 1), av);
+        }
+    }
+#undef REF_MIN
+    for (k = 0; k < 4; ++k) {
+        const float *side_mm = &acc[4 + 2 * k];
+        int left_wall = acc[(k + 1) & 3] < cfg->open_mm, right_wall = acc[(k + 3) & 3] < cfg->open_mm, score;
+        float turn = ffr_absf(ffr_wrap_pi(dir0 + (float)k * 0.5f * PI_F - heading));
+        float beside = (cfg->home_wall_side == FFR_HOME_WALL_LEFT || cfg->home_wall_side == FFR_HOME_WALL_RIGHT)
+                           ? acc[12 + 2 * k + side]
+                           : 0.0f;
+        if (side_mm[0] < cfg->body_half_width_mm || side_mm[1] < cfg->body_half_width_mm ||
+            side_mm[0] + side_mm[1] < 2.0f * band) {
+            continue;
+        }
+        score = cfg->home_wall_side == FFR_HOME_WALL_LEFT    ? left_wall
+                : cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? right_wall
+                                                             : left_wall + right_wall;
+        if (score > best_score || (score == best_score && (beside < best_beside - 40.0f ||
+                                                           (beside <= best_beside + 40.0f && turn < best_turn)))) {
+            best = k;
+            best_score = score;
+            best_turn = turn;
+            best_beside = beside;
+        }
+    }
+    return best;
+}
+
+static uint32_t lcg_next(uint32_t *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return *s >> 8;
+}
+
+static float lcg_uniform(uint32_t *s, float lo, float hi)
+{
+    return lo + (hi - lo) * (float)(lcg_next(s) % 10001u) / 10000.0f;
+}
+
+TEST(the_aim_decides_as_aimints_one_tick_aim)
+{
+    /* random junctions: up to four walls' stretches at random distances
+     * (some inside a hallway's width, some off the axes, a few bins empty),
+     * read 0.75..1 of their distance; random walls' direction, heading and
+     * robot offset, each wall side rule, open_mm below and above a
+     * hallway's width (560 mm) */
+    ffr_config_t cfg;
+    ffr_home_orient_t o;
+    ffr_odometry_t odo;
+    uint32_t seed = 2026u;
+    int n, open = 0, shut = 0;
+    ffr_config_default(&cfg);
+    for (n = 0; n < 3000; ++n) {
+        float f = lcg_uniform(&seed, 0.75f, 1.0f), dir0 = lcg_uniform(&seed, -PI_F, PI_F);
+        float e = lcg_uniform(&seed, 150.0f, 700.0f), so = lcg_uniform(&seed, -700.0f, -150.0f);
+        float we = lcg_uniform(&seed, -700.0f, -150.0f), no = lcg_uniform(&seed, 150.0f, 700.0f);
+        float cx = lcg_uniform(&seed, -60.0f, 60.0f), cy = lcg_uniform(&seed, -60.0f, 60.0f);
+        float heading = lcg_uniform(&seed, -PI_F, PI_F), c = ffr_cosf(dir0), s = ffr_sinf(dir0);
+        int b, r, want;
+        cfg.home_wall_side = (uint8_t)(n % 3 == 0 ? FFR_HOME_WALL_LEFT : n % 3 == 1 ? FFR_HOME_WALL_RIGHT
+                                                                                    : FFR_HOME_WALL_ANY);
+        /* a team's calibration may have open_mm beyond a hallway's width */
+        cfg.open_mm = n % 5 == 4 ? 650.0f : 400.0f;
+        ffr_odometry_reset(&odo);
+        ffr_orient_reset(&o, &odo);
+        /* in the walls' frame, then turned by dir0 into odometry's */
+        add_stretch(&o, e, lcg_uniform(&seed, -800.0f, 0.0f), e, lcg_uniform(&seed, 0.0f, 800.0f), f);
+        add_stretch(&o, lcg_uniform(&seed, -800.0f, 0.0f), so, lcg_uniform(&seed, 0.0f, 800.0f), so, f);
+        if (n & 4) {
+            add_stretch(&o, we, lcg_uniform(&seed, -800.0f, 0.0f), we, lcg_uniform(&seed, 0.0f, 800.0f), f);
+        }
+        if (n & 8) {
+            add_stretch(&o, lcg_uniform(&seed, -800.0f, 0.0f), no, lcg_uniform(&seed, 0.0f, 800.0f), no, f);
+        }
+        for (b = 0; b < FFR_ORIENT_BINS; ++b) {
+            float x = o.bin_x_mm[b], y = o.bin_y_mm[b];
+            o.bin_x_mm[b] = x * c - y * s;
+            o.bin_y_mm[b] = x * s + y * c;
+        }
+        want = ref_choose(&o, &cfg, dir0, heading, cx, cy);
+        r = ffr_orient_choose(&o, &cfg, dir0, heading, cx, cy);
+        CHECK(r == want);
+        /* the firmware's own: the bins turned once, then aimed from */
+        ffr_orient_to_walls(&o, dir0);
+        CHECK(ffr_orient_aim(&o, &cfg, dir0, heading, cx, cy) == want);
+        open += want >= 0;
+        shut += want < 0;
+    }
+    CHECK(open > 1000 && shut > 100); /* both kinds of case were met */
+}
+
+#define ORIENT_PH_CENTRE 1u /* home_orient.c's PH_CENTRE */
+#define ORIENT_PH_AIM 4u    /* home_orient.c's PH_AIM */
+#define ORIENT_PH_TURN 5u   /* home_orient.c's PH_TURN */
+
+TEST(the_aim_turns_on_its_own_tick)
+{
+    /* the centre's tick turns the bins into the walls' frame; the aim's
+     * tick (the next, no shift) decides and starts the turn: the start's
+     * timing as before the aim's rule grew. A hallway along x, both ways
+     * open, walls either side 230 mm off: the smaller turn (east) */
+    ffr_state_t st;
+    ffr_config_default(&st.cfg);
+    st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
+    ffr_odometry_reset(&st.odo);
+    ffr_orient_reset(&st.orient, &st.odo);
+    add_stretch(&st.orient, -700.0f, 230.0f, 700.0f, 230.0f, 1.0f);
+    add_stretch(&st.orient, -700.0f, -230.0f, 700.0f, -230.0f, 1.0f);
+    st.orient.dir0_rad = 0.0f;
+    st.orient.phase = ORIENT_PH_CENTRE;
+    st.cmd_v_mm_s = 0.0f;
+    st.cmd_w_rad_s = 0.0f;
+    st.odo.heading_rad = 0.2f;
+    CHECK(ffr_orient_step(&st) == 0);
+    CHECK(st.orient.phase == ORIENT_PH_AIM);
+    CHECK(st.orient.bin_x_mm[9] > 60000.0f || ffr_absf(st.orient.bin_y_mm[9]) <= 231.0f); /* turned (dir0 0: as is) */
+    CHECK(ffr_orient_step(&st) == 0);
+    CHECK(st.orient.phase == ORIENT_PH_TURN);
+    CHECK(ffr_cosf(st.orient.target_rad) > 0.99f);
+}
+
 TEST(the_firmware_orients_before_the_route)
 {
     ffr_config_t cfg;
@@ -734,6 +988,10 @@ SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
       TEST_REF(the_route_direction_by_the_wall_side_rule),
+      TEST_REF(a_junction_read_short_keeps_the_way_with_its_wall),
+      TEST_REF(a_narrow_hallway_off_its_middle_is_a_way),
+      TEST_REF(the_aim_decides_as_aimints_one_tick_aim),
+      TEST_REF(the_aim_turns_on_its_own_tick),
       TEST_REF(the_firmware_orients_before_the_route),
       TEST_REF(the_nearest_wall_from_the_five_rangers),
       TEST_REF(room_to_turn_first_then_the_sweep),
