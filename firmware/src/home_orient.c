@@ -852,7 +852,15 @@ int ffr_orient_step(ffr_state_t *st)
             float c = ffr_cosf(st->odo.heading_rad), sn = ffr_sinf(st->odo.heading_rad);
             float bx = (c * o->near_x_mm + sn * o->near_y_mm) / o->near_mm;
             float by = (c * o->near_y_mm - sn * o->near_x_mm) / o->near_mm;
+            /* and a hard stop, not the speed ramp's: at the sweep's full
+             * rate the ramp (accel_mm_s2) lets the body turn on ~20 degrees,
+             * and a wall's end seen this late is within that (a corner
+             * beside the body, in no ranger's beam until the turn brings
+             * its wall round). The wheels' references and position
+             * integrals cleared, the speed loop brakes on the measured
+             * speed at once */
             ffr_stop(st);
+            ffr_speed_reset(&st->speed);
             start_escape(st, ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM, o->near_mm, bx, by);
             return 0;
         }
