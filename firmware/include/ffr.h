@@ -382,7 +382,8 @@ typedef struct {
     uint8_t probed;                /* rangers the last escape moved away from, whose reading it watches */
     uint8_t probe_done;            /* the probe for fold-back made since the robot last looked afresh */
     uint8_t folded;                /* rangers (bit i) the probe saw folded back */
-    uint8_t reserved[3];
+    int8_t sweep_side;             /* the sweep turns: +1 left, -1 right, 0 toward home_wall_side */
+    uint8_t reserved[2];
     float leg_mm;                  /* the escape's arc legs' length           */
     float near_mm;                 /* nearest wall line seen in the sweep, from where it stands */
     float near_x_mm, near_y_mm;    /* its nearest point (odometry, from the robot) */

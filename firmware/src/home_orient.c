@@ -92,6 +92,7 @@
 #define PROBE_MM 15.0f            /* the probe for fold-back: this far, straight (chosen) */
 #define PROBE_SPEED_MM_S 40.0f    /* and this slowly (chosen: a reading or two per mm)   */
 #define PROBE_TELL_MM 8.0f        /* a reading changed this much on the probe tells its way */
+#define SIDE_MARGIN_MM 20.0f      /* a wall beside within the turning radius + this: the sweep turns away from it (chosen) */
 
 /* a shift to stand at wall_target_mm at most this far across the route's
  * first direction (and at most SHIFT_TOL_MM along it) is not made; 0 (the
@@ -118,7 +119,8 @@ void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
     o->probed = 0u;
     o->probe_done = 0u;
     o->folded = 0u;
-    o->reserved[0] = o->reserved[1] = o->reserved[2] = 0u;
+    o->sweep_side = 0;
+    o->reserved[0] = o->reserved[1] = 0u;
     o->leg_mm = 0.0f;
     o->near_mm = 65535.0f;
     o->near_x_mm = 0.0f;
@@ -684,6 +686,21 @@ int ffr_orient_clearance_fold(const ffr_config_t *cfg, const ffr_ir_geom_t *g, c
     return found;
 }
 
+int ffr_orient_sweep_side(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT])
+{
+    /* a wall beside the body, nearer than the turning radius + SIDE_MARGIN_MM:
+     * the sweep turns away from it (+1 left, -1 right; 0: no such wall).
+     * Turning away, the front corner on its side (156 mm from the axle)
+     * swings off it and only the rear corner (141 mm) swings toward it;
+     * turning toward it, the front corner meets it first */
+    float d, nx, ny;
+    if (!ffr_orient_clearance(cfg, g, ir_mm, &d, &nx, &ny) ||
+        d >= ffr_orient_turn_radius_mm(cfg) + SIDE_MARGIN_MM || ffr_absf(ny) < 0.5f) {
+        return 0;
+    }
+    return ny < 0.0f ? 1 : -1;
+}
+
 void ffr_orient_begin(ffr_state_t *st)
 {
     ffr_orient_reset(&st->orient, &st->odo);
@@ -1059,16 +1076,21 @@ int ffr_orient_step(ffr_state_t *st)
     }
     if (o->phase == PH_CLEAR) {
         uint8_t tries = o->escapes;
+        int side;
         if (!clear_step(st)) {
             return 0;
         }
         /* room to turn: the sweep starts from here */
+        side = ffr_orient_sweep_side(cfg, &st->ir_geom, st->ir_mm);
         ffr_orient_reset(o, &st->odo);
         o->escapes = tries;
+        o->sweep_side = (int8_t)side;
     }
     if (o->phase == PH_SWEEP) {
         /* toward the side the route wants its wall on: it is usually the way back */
-        float sweep = (cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? -1.0f : 1.0f) * ORIENT_SWEEP_DEG * FFR_DEG;
+        float sweep = (o->sweep_side != 0 ? (float)o->sweep_side
+                                          : cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? -1.0f : 1.0f) *
+                      ORIENT_SWEEP_DEG * FFR_DEG;
         float done = ffr_absf(st->odo.heading_rad - o->h0_rad);
         ffr_orient_record(o, cfg, &st->odo, &st->ir_geom, st->ir_mm);
         if (o->near_mm < ffr_orient_turn_radius_mm(cfg) + LINE_MARGIN_MM && o->escapes < ESCAPE_TRIES) {
@@ -1077,7 +1099,15 @@ int ffr_orient_step(ffr_state_t *st)
             float c = ffr_cosf(st->odo.heading_rad), sn = ffr_sinf(st->odo.heading_rad);
             float bx = (c * o->near_x_mm + sn * o->near_y_mm) / o->near_mm;
             float by = (c * o->near_y_mm - sn * o->near_x_mm) / o->near_mm;
+            /* and a hard stop, not the speed ramp's: at the sweep's full
+             * rate the ramp (accel_mm_s2) lets the body turn on ~20 degrees,
+             * and a wall's end seen this late is within that (a corner
+             * beside the body, in no ranger's beam until the turn brings
+             * its wall round). The wheels' references and position
+             * integrals cleared, the speed loop brakes on the measured
+             * speed at once */
             ffr_stop(st);
+            ffr_speed_reset(&st->speed);
             start_escape(st, ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM, o->near_mm, bx, by);
             return 0;
         }

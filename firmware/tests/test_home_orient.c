@@ -984,6 +984,103 @@ TEST(the_front_shut_straight_back_before_the_s)
     CHECK(r.out.state == FFR_ST_FOLLOW);
 }
 
+TEST(a_wall_line_in_the_sweep_brakes_at_once)
+{
+    /* the sweep at full rate, a wall's line found within the turning circle
+     * (a corner beside the body comes round into a ranger's beam late): the
+     * speed loop's ramp is not waited for (at 1.5 m/s2 the body turned on
+     * ~20 degrees, into the corner); its references and integrals are
+     * cleared, so the next output brakes against the wheels' motion */
+    ffr_config_t cfg;
+    rig_t r;
+    int16_t pwm[2];
+    float ir[FFR_IR_COUNT];
+    ffr_config_default(&cfg);
+    rig_init(&r, &cfg);
+    rig_no_walls(&cfg, ir);
+    feed(&r, &cfg, ir);
+    r.st.cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+    ffr_orient_begin(&r.st);
+    ffr_orient_reset(&r.st.orient, &r.st.odo);
+    r.st.orient.phase = 0u; /* PH_SWEEP */
+    /* turning right at the sweep's rate: the wheels and their references */
+    r.st.speed.v_ref[0] = 290.0f;
+    r.st.speed.v_ref[1] = -290.0f;
+    r.st.speed.pos_err_mm[0] = 8.0f;
+    r.st.speed.pos_err_mm[1] = -8.0f;
+    r.st.odo.v_mm_s[0] = 290.0f;
+    r.st.odo.v_mm_s[1] = -290.0f;
+    /* a wall's line seen 120 mm off on the left */
+    r.st.orient.near_mm = 120.0f;
+    r.st.orient.near_x_mm = 0.0f;
+    r.st.orient.near_y_mm = 120.0f;
+    CHECK(ffr_orient_step(&r.st) == 0);
+    CHECK(r.st.orient.phase == 8u); /* PH_ESCAPE: away from it first */
+    CHECK_NEAR(r.st.speed.v_ref[0], 0.0f, 1e-6f);
+    CHECK_NEAR(r.st.speed.v_ref[1], 0.0f, 1e-6f);
+    CHECK_NEAR(r.st.speed.pos_err_mm[0], 0.0f, 1e-6f);
+    /* the next output with the wheels still turning: against them */
+    ffr_speed_control(&r.st.speed, &r.st.cfg, &r.st.odo, 0.0f, 0.0f, 0.01f, pwm);
+    CHECK(pwm[0] < 0);
+    CHECK(pwm[1] > 0);
+}
+
+TEST(the_sweep_turns_away_from_a_wall_beside)
+{
+    /* escapes spent with a wall beside within the turning circle: the sweep
+     * turns away from it (its front corner, 156 mm out, swings off the wall;
+     * only the rear corner, 141 mm, swings toward it), whatever
+     * home_wall_side would pick; no such wall: home_wall_side's way */
+    ffr_config_t cfg;
+    ffr_ir_geom_t g;
+    float ir[FFR_IR_COUNT];
+    float gap;
+    rig_t r;
+    ffr_config_default(&cfg);
+    for (gap = 110.0f; gap <= 170.0f; gap += 10.0f) {
+        rig_walls_t right = {2000.0f, 0.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        rig_walls_t left = {0.0f, -2000.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        right.right_y = -gap;
+        left.left_y = gap;
+        readings(&cfg, &right, 0.0f, 0.0f, 0.0f, ir);
+        CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == 1);
+        readings(&cfg, &left, 0.0f, 0.0f, 0.0f, ir);
+        CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == -1);
+    }
+    {
+        /* a wall ahead, or one beside but clear of the turning circle: 0 */
+        rig_walls_t ahead = {2000.0f, -2000.0f, 150.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        rig_walls_t far = {2000.0f, -240.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        readings(&cfg, &ahead, 0.0f, 0.0f, 0.0f, ir);
+        CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == 0);
+        readings(&cfg, &far, 0.0f, 0.0f, 0.0f, ir);
+        CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == 0);
+    }
+    {
+        /* in the firmware: the moves spent, a wall 130 mm off on the right,
+         * home_wall_side right (a right sweep otherwise): it turns left */
+        rig_walls_t right = {2000.0f, -130.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        rig_init(&r, &cfg);
+        r.st.cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+        readings(&cfg, &right, 0.0f, 0.0f, 0.0f, ir);
+        feed(&r, &cfg, ir);
+        rig_tick(&r); /* the readings in */
+        ffr_orient_begin(&r.st);
+        r.st.orient.escapes = 4u;
+        CHECK(ffr_orient_step(&r.st) == 0);
+        CHECK(r.st.orient.sweep_side == 1);
+        CHECK(r.st.cmd_w_rad_s > 0.0f);
+        /* nothing near: the right sweep as before */
+        rig_no_walls(&cfg, ir);
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+        ffr_orient_begin(&r.st);
+        CHECK(ffr_orient_step(&r.st) == 0);
+        CHECK(r.st.orient.sweep_side == 0);
+        CHECK(r.st.cmd_w_rad_s < 0.0f);
+    }
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -1000,4 +1097,6 @@ SUITE(home_orient,
       TEST_REF(a_short_move_tells_folded_back_from_far),
       TEST_REF(backed_up_to_a_wall_read_folded_back),
       TEST_REF(a_far_wall_end_beside_the_way_does_not_close_it),
-      TEST_REF(the_front_shut_straight_back_before_the_s));
+      TEST_REF(the_front_shut_straight_back_before_the_s),
+      TEST_REF(a_wall_line_in_the_sweep_brakes_at_once),
+      TEST_REF(the_sweep_turns_away_from_a_wall_beside));
