@@ -127,6 +127,9 @@ static int drive_to_goal(ffr_state_t *st)
  * this (mm, ahead) of the corner rangers' line (chosen: two parts' errors at
  * ~20 cm) */
 #define SQUARE_SAME_WALL_MM 40.0f
+/* the readings used: within this (chosen: as the scan's SQ_RANGE_MM,
+ * turn_calibration.c; a GP2D12 part's error grows with the range) */
+#define SQUARE_RANGE_MM 600.0f
 /* a wall further off than this is not the corridor's far wall (a corner) */
 #define SQUARE_MAX_DEG 30.0f
 
@@ -144,7 +147,11 @@ void ffr_square_on_wall_ahead(ffr_state_t *st)
     xr = g->hit_x_mm[FFR_IR_RF];
     yr = g->hit_y_mm[FFR_IR_RF];
     xc = g->hit_x_mm[FFR_IR_CF];
-    if (yl <= 0.0f || yr >= 0.0f
+    /* each reading within SQUARE_RANGE_MM (a far one may be through a door
+     * beside the wall ahead, and is the least sure) and the centre ranger's
+     * hit on the corner rangers' line */
+    if (st->ir_mm[FFR_IR_LF] > SQUARE_RANGE_MM || st->ir_mm[FFR_IR_RF] > SQUARE_RANGE_MM
+        || st->ir_mm[FFR_IR_CF] > SQUARE_RANGE_MM || yl <= 0.0f || yr >= 0.0f
         || ffr_absf(xl + (0.0f - yl) * (xr - xl) / (yr - yl) - xc) > SQUARE_SAME_WALL_MM) {
         return;
     }
