@@ -105,6 +105,70 @@ static int drive_to_goal(ffr_state_t *st)
     return 0;
 }
 
+/* Out of a room's door the robot faces the corridor's far wall, square to
+ * its exit heading (contest walls meet at right angles); the front corner
+ * rangers' two hits on that wall give its angle to the body. A scan and
+ * the turns out of a room on slipping tracks leave odometry's heading
+ * 10-20 degrees off, and the short legs after (to the next junction) have
+ * no time for the side walls' fixes: a robot turned into a room's corner
+ * or miscounted the openings (docs/firmware.md, "Squared on the wall ahead
+ * out of a room"). Two GP2D12 parts at the datasheet's extremes put the two
+ * hits' line up to ~9 degrees off: an angle beyond SQUARE_MIN_DEG =
+ * SQUARE_KEEP_DEG + 9 is taken, less SQUARE_KEEP_DEG, which never leaves
+ * the heading further off than it was for a bias within 9 degrees
+ * (chosen). */
+#ifndef SQUARE_MIN_DEG
+#define SQUARE_MIN_DEG 13.0f
+#endif
+#ifndef SQUARE_KEEP_DEG
+#define SQUARE_KEEP_DEG 4.0f
+#endif
+/* the three hits on one straight wall across: the centre ranger's within
+ * this (mm, ahead) of the corner rangers' line (chosen: two parts' errors at
+ * ~20 cm) */
+#define SQUARE_SAME_WALL_MM 40.0f
+/* the readings used: within this (chosen: as the scan's SQ_RANGE_MM,
+ * turn_calibration.c; a GP2D12 part's error grows with the range) */
+#define SQUARE_RANGE_MM 600.0f
+/* a wall further off than this is not the corridor's far wall (a corner) */
+#define SQUARE_MAX_DEG 30.0f
+
+void ffr_square_on_wall_ahead(ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    const ffr_ir_geom_t *g = &st->ir_geom;
+    float xl, yl, xr, yr, xc, wall, held, off;
+    if (!ffr_ir_valid(cfg, st->ir_mm[FFR_IR_LF]) || !ffr_ir_valid(cfg, st->ir_mm[FFR_IR_RF])
+        || !ffr_ir_valid(cfg, st->ir_mm[FFR_IR_CF])) {
+        return;
+    }
+    xl = g->hit_x_mm[FFR_IR_LF];
+    yl = g->hit_y_mm[FFR_IR_LF];
+    xr = g->hit_x_mm[FFR_IR_RF];
+    yr = g->hit_y_mm[FFR_IR_RF];
+    xc = g->hit_x_mm[FFR_IR_CF];
+    /* each reading within SQUARE_RANGE_MM (a far one may be through a door
+     * beside the wall ahead, and is the least sure) and the centre ranger's
+     * hit on the corner rangers' line */
+    if (st->ir_mm[FFR_IR_LF] > SQUARE_RANGE_MM || st->ir_mm[FFR_IR_RF] > SQUARE_RANGE_MM
+        || st->ir_mm[FFR_IR_CF] > SQUARE_RANGE_MM || yl <= 0.0f || yr >= 0.0f
+        || ffr_absf(xl + (0.0f - yl) * (xr - xl) / (yr - yl) - xc) > SQUARE_SAME_WALL_MM) {
+        return;
+    }
+    /* the robot turned by `wall` off the wall's normal (left positive) */
+    wall = ffr_atan2f(xl - xr, yl - yr);
+    if (ffr_absf(wall) > SQUARE_MAX_DEG * FFR_DEG) {
+        return;
+    }
+    held = ffr_wrap_pi(st->odo.heading_rad - st->route.heading_ref_rad);
+    off = wall - held; /* what odometry's heading is short of the truth */
+    if (off > SQUARE_MIN_DEG * FFR_DEG) {
+        st->odo.heading_rad += off - SQUARE_KEEP_DEG * FFR_DEG;
+    } else if (off < -SQUARE_MIN_DEG * FFR_DEG) {
+        st->odo.heading_rad += off + SQUARE_KEEP_DEG * FFR_DEG;
+    }
+}
+
 static int event_fired(ffr_state_t *st, const ffr_step_t *s)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -197,6 +261,7 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
             st->route.heading_ref_rad = st->room.exit_heading_rad;
             break;
         case FFR_ROOM_LEFT:
+            ffr_square_on_wall_ahead(st);
             st->rooms_searched = (uint8_t)(st->rooms_searched + 1u);
             if (st->flags & FFR_FLAG_EXTINGUISHED) {
                 st->returning = 1;

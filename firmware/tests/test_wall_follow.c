@@ -234,6 +234,79 @@ TEST(the_last_stretch_past_an_opening_keeps_a_front_corner_off_a_wall)
     }
 }
 
+
+/* Out of a room, facing the corridor's far wall (route.c,
+ * ffr_square_on_wall_ahead): the robot truly turned `psi` off the wall's
+ * normal while odometry holds the exit heading. An angle within
+ * SQUARE_MIN_DEG (13) changes nothing (two parts' bias); beyond it, odometry
+ * is set to within SQUARE_KEEP_DEG (4) of the wall's angle, either side. A
+ * corner ahead (the centre ranger's hit off the corner rangers' line), a
+ * wall seen by two rangers only, and three hits in a line with one read
+ * beyond SQUARE_RANGE_MM (600: a square robot whose left front ranger looks
+ * through a door beside the wall ahead, seen in a jittered arena as a wall
+ * 26 degrees off) change nothing. */
+static float square_after(float psi, float d_mm, float c_extra_mm, int drop_c)
+{
+    rig_t r;
+    ffr_config_t cfg;
+    float ref0 = 0.25f * FFR_PI;
+    ffr_config_default(&cfg);
+    rig_init(&r, &cfg);
+    r.st.odo.heading_rad = ref0;
+    r.st.route.heading_ref_rad = ref0;
+    rig_no_walls(&cfg, r.st.ir_mm);
+    /* the wall x = d_mm in the wall's frame; in the body frame its normal is (cos psi, -sin psi) */
+    r.st.ir_mm[FFR_IR_LF] = reading(&cfg, FFR_IR_LF, ffr_cosf(psi), -ffr_sinf(psi), d_mm);
+    r.st.ir_mm[FFR_IR_RF] = reading(&cfg, FFR_IR_RF, ffr_cosf(psi), -ffr_sinf(psi), d_mm);
+    r.st.ir_mm[FFR_IR_CF] = drop_c ? FFR_IR_NONE(&cfg)
+                                   : reading(&cfg, FFR_IR_CF, ffr_cosf(psi), -ffr_sinf(psi), d_mm) + c_extra_mm;
+    rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
+    ffr_square_on_wall_ahead(&r.st);
+    return r.st.odo.heading_rad - ref0;
+}
+
+/* the left front ranger through a door: its hit far out on a line with the others */
+static float square_through_a_door(void)
+{
+    rig_t r;
+    ffr_config_t cfg;
+    ffr_config_default(&cfg);
+    rig_init(&r, &cfg);
+    r.st.odo.heading_rad = 0.0f;
+    r.st.route.heading_ref_rad = 0.0f;
+    rig_no_walls(&cfg, r.st.ir_mm);
+    r.st.ir_mm[FFR_IR_CF] = 164.0f;
+    r.st.ir_mm[FFR_IR_LF] = 716.0f;
+    r.st.ir_mm[FFR_IR_RF] = 173.0f;
+    rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
+    ffr_square_on_wall_ahead(&r.st);
+    return r.st.odo.heading_rad;
+}
+
+TEST(out_of_a_room_the_heading_is_set_square_to_the_wall_ahead_when_far_off)
+{
+    int a;
+    float dm;
+    for (dm = 200.0f; dm <= 300.0f; dm += 50.0f) {
+        for (a = -20; a <= 20; ++a) {
+            float psi = (float)a * FFR_DEG;
+            float got = square_after(psi, dm, 0.0f, 0);
+            if (a == -13 || a == 13) {
+                continue; /* exactly the bound: either side of it, by rounding */
+            }
+            if (a > -13 && a < 13) {
+                CHECK_NEAR(got, 0.0f, 1e-6f);
+            } else {
+                CHECK_NEAR(got, psi - (a > 0 ? 4.0f : -4.0f) * FFR_DEG, 0.2f * FFR_DEG);
+            }
+            /* not one straight wall: a corner 60 mm nearer in the middle, or no centre hit */
+            CHECK_NEAR(square_after(psi, dm, -60.0f, 0), 0.0f, 1e-6f);
+            CHECK_NEAR(square_after(psi, dm, 0.0f, 1), 0.0f, 1e-6f);
+        }
+    }
+    CHECK_NEAR(square_through_a_door(), 0.0f, 1e-6f);
+}
+
 SUITE(wall_follow,
       TEST_REF(a_parallel_wall_on_target_needs_no_steering),
       TEST_REF(turned_toward_a_wall_steers_away),
@@ -242,4 +315,5 @@ SUITE(wall_follow,
       TEST_REF(the_held_heading_follows_a_wall_only_within_5_degrees),
       TEST_REF(a_front_corner_near_a_side_wall_is_steered_off_it),
       TEST_REF(on_the_corridor_middle_the_corner_guard_does_nothing),
-      TEST_REF(the_last_stretch_past_an_opening_keeps_a_front_corner_off_a_wall));
+      TEST_REF(the_last_stretch_past_an_opening_keeps_a_front_corner_off_a_wall),
+      TEST_REF(out_of_a_room_the_heading_is_set_square_to_the_wall_ahead_when_far_off));
