@@ -125,23 +125,28 @@ TEST(the_open_end_and_the_walls_around)
     CHECK(ffr_orient_choose(&o, &cfg, rot, rot, 0.0f, 0.0f) == 2);
 }
 
+/* a hit at (x, y) kept in its bin when it is the bin's nearest, as the
+ * sweep keeps them (within 800 mm) */
+static void keep_nearest(ffr_home_orient_t *o, float x, float y)
+{
+    float r = ffr_sqrtf(x * x + y * y), a = ffr_atan2f(y, x);
+    int bin = (int)((a < 0.0f ? a + 2.0f * PI_F : a) / (2.0f * PI_F / (float)FFR_ORIENT_BINS));
+    if (bin >= FFR_ORIENT_BINS) {
+        bin = FFR_ORIENT_BINS - 1;
+    }
+    if (r < 800.0f && r < (float)o->bin_mm[bin]) {
+        o->bin_mm[bin] = (uint16_t)r;
+        o->bin_x_mm[bin] = x;
+        o->bin_y_mm[bin] = y;
+    }
+}
+
 /* bins filled by hand: a straight wall along a line through (px, py), direction (ux, uy) */
 static void add_wall(ffr_home_orient_t *o, float px, float py, float ux, float uy)
 {
     int b;
     for (b = -40; b <= 40; ++b) {
-        float x = px + ux * 20.0f * (float)b, y = py + uy * 20.0f * (float)b;
-        float r = ffr_sqrtf(x * x + y * y);
-        int bin = (int)((ffr_atan2f(y, x) < 0.0f ? ffr_atan2f(y, x) + 2.0f * PI_F : ffr_atan2f(y, x)) /
-                        (2.0f * PI_F / (float)FFR_ORIENT_BINS));
-        if (bin >= FFR_ORIENT_BINS) {
-            bin = FFR_ORIENT_BINS - 1;
-        }
-        if (r < 800.0f && r < (float)o->bin_mm[bin]) {
-            o->bin_mm[bin] = (uint16_t)r;
-            o->bin_x_mm[bin] = x;
-            o->bin_y_mm[bin] = y;
-        }
+        keep_nearest(o, px + ux * 20.0f * (float)b, py + uy * 20.0f * (float)b);
     }
 }
 
@@ -189,17 +194,7 @@ static void add_stretch(ffr_home_orient_t *o, float x0, float y0, float x1, floa
 {
     int k, n = 200;
     for (k = 0; k <= n; ++k) {
-        float x = f * (x0 + (x1 - x0) * (float)k / (float)n), y = f * (y0 + (y1 - y0) * (float)k / (float)n);
-        float r = ffr_sqrtf(x * x + y * y), a = ffr_atan2f(y, x);
-        int bin = (int)((a < 0.0f ? a + 2.0f * PI_F : a) / (2.0f * PI_F / (float)FFR_ORIENT_BINS));
-        if (bin >= FFR_ORIENT_BINS) {
-            bin = FFR_ORIENT_BINS - 1;
-        }
-        if (r < 800.0f && r < (float)o->bin_mm[bin]) {
-            o->bin_mm[bin] = (uint16_t)r;
-            o->bin_x_mm[bin] = x;
-            o->bin_y_mm[bin] = y;
-        }
+        keep_nearest(o, f * (x0 + (x1 - x0) * (float)k / (float)n), f * (y0 + (y1 - y0) * (float)k / (float)n));
     }
 }
 
