@@ -713,7 +713,8 @@ void ffr_orient_begin(ffr_state_t *st)
  * is mostly ahead or behind, else an arc turning away from it (forward if
  * the front is free, else backward). 1 when there is room (or the moves are
  * spent): the sweep begins here. */
-static float end_room(const ffr_state_t *st, int backward, float band);
+static float end_room(const ffr_state_t *st, int backward, float band, uint8_t skip);
+static uint8_t beside_skip(const ffr_state_t *st, float side);
 
 /* One move away from a wall d mm off in direction (nx, ny) (body frame). */
 static void start_escape(ffr_state_t *st, float need, float d, float nx, float ny)
@@ -737,11 +738,19 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
         float c = 1.0f - lat / (2.0f * ESCAPE_RADIUS_MM);
         float a = ffr_atan2f(ffr_sqrtf(1.0f - c * c), c);
         /* turning away from the wall's side, either way driven */
-        float front = end_room(st, 0, ARC_BAND_MM);
+        /* the wall beside, read at the span's bottom, is no end of the path
+         * when the floor ahead (as the other rangers see it) has room for the
+         * whole S beyond ESCAPE_FREE_MM (else: as before) */
+        float front = end_room(st, 0, ARC_BAND_MM, 0u);
+        float front_beside = end_room(st, 0, ARC_BAND_MM, beside_skip(st, ny));
         uint8_t was_back = o->leg == LEG_BACK;
-        int shut = front < st->cfg.body_front_mm + ESCAPE_FREE_MM + ESCAPE_START_MM;
+        int shut;
+        if (front_beside > st->cfg.body_front_mm + ESCAPE_FREE_MM + 2.0f * ESCAPE_RADIUS_MM * ffr_sinf(a)) {
+            front = front_beside;
+        }
+        shut = front < st->cfg.body_front_mm + ESCAPE_FREE_MM + ESCAPE_START_MM;
         /* after the straight back below: forward, if that gave the front room */
-        o->reverse = end_room(st, 1, ARC_BAND_MM) > front && (shut || !was_back);
+        o->reverse = end_room(st, 1, ARC_BAND_MM, 0u) > front && (shut || !was_back);
         o->leg = 1u;
         o->leg_mm = ESCAPE_RADIUS_MM * a;
         o->target_rad = (ny > 0.0f ? -1.0f : 1.0f) / ESCAPE_RADIUS_MM;
@@ -950,14 +959,14 @@ static int clear_step(ffr_state_t *st)
 
 /* Free floor from the axle midpoint to the nearest hit in the body's path
  * (its half width + band each side), ahead (backward = 0) or behind. */
-static float end_room(const ffr_state_t *st, int backward, float band)
+static float end_room(const ffr_state_t *st, int backward, float band, uint8_t skip)
 {
     const ffr_config_t *cfg = &st->cfg;
     float room = 65535.0f;
     int i;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         float x = st->ir_geom.hit_x_mm[i], y = st->ir_geom.hit_y_mm[i];
-        if (!ffr_ir_valid(cfg, st->ir_mm[i])) {
+        if (!ffr_ir_valid(cfg, st->ir_mm[i]) || (skip >> i) & 1) {
             continue;
         }
         if (st->ir_mm[i] <= cfg->ir_min_mm + 0.5f) {
@@ -974,12 +983,47 @@ static float end_room(const ffr_state_t *st, int backward, float band)
     return room;
 }
 
+/* The wall beside that a sideways escape moves away from (side: > 0 left,
+ * < 0 right), nearer than the rangers measure: the corner and rear rangers
+ * on that side reading at their span's bottom see that wall (very near, not
+ * unknown), which lies along the move, not across either end of it; both
+ * of them, as a wall along the side (one alone may be a wall's end). Their
+ * hits, placed at half the span's bottom, would otherwise land inside the
+ * body's path band at both ends and shut both (the escape could not move;
+ * the sweep then swung a corner into the wall). The centre ranger still
+ * looks ahead, the other side's rangers at their corners. */
+static uint8_t beside_skip(const ffr_state_t *st, float side)
+{
+    uint8_t m = 0u;
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if (st->ir_geom.beam_sin[i] * side > 0.5f) {
+            if (st->ir_mm[i] > st->cfg.ir_min_mm + 0.5f) {
+                return 0u; /* not both: the other may be a wall's end at a corner */
+            }
+            m = (uint8_t)(m | (1 << i));
+        }
+    }
+    return m;
+}
+
 /* the end the escape drives toward is free */
 static int escape_free(const ffr_state_t *st)
 {
-    /* an arc swings the body's corners out: a wider band */
+    /* an arc swings the body's corners out: a wider band. On the S's first
+     * arc (turning away from the wall beside: that wall on the other side
+     * of the turn) the wall beside is no end of the path */
     float band = st->orient.target_rad != 0.0f ? ARC_BAND_MM : BAND_MARGIN_MM;
-    return end_room(st, st->orient.reverse & 1u, band) > st->cfg.body_front_mm + ESCAPE_FREE_MM;
+    const ffr_home_orient_t *o = &st->orient;
+    float need = st->cfg.body_front_mm + ESCAPE_FREE_MM;
+    if (end_room(st, o->reverse & 1u, band, 0u) > need) {
+        return 1;
+    }
+    /* forward on the S's first arc: the wall beside read at the span's
+     * bottom is no end, if the rest of the S fits ahead */
+    return o->leg == 1u && !o->reverse &&
+           end_room(st, 0, band, beside_skip(st, o->target_rad > 0.0f ? -1.0f : 1.0f)) >
+               need + 0.9f * ((o->goal_mm - st->odo.dist_mm) + o->leg_mm);
 }
 
 /* odometry's frame turned by -rot about its origin: `rot` becomes heading 0 */

@@ -1076,6 +1076,44 @@ TEST(the_sweep_turns_away_from_a_wall_beside)
     }
 }
 
+TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
+{
+    /* a wall 140 mm off on the right: its corner and rear rangers read
+     * below their span (at its bottom). Those hits, placed at half the
+     * span's bottom, lie inside the arc's band at both ends; taken as ends
+     * they shut both and the escape could not move (start seed 120). Read as
+     * the wall beside, with the floor ahead free for the whole S: it drives
+     * the S forward, turning away (left) */
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT];
+    rig_t r;
+    rig_walls_t right = {2000.0f, -140.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    ffr_config_default(&cfg);
+    rig_init(&r, &cfg);
+    readings(&cfg, &right, 0.0f, 0.0f, 0.0f, ir);
+    CHECK(ir[FFR_IR_RF] <= cfg.ir_min_mm + 0.5f && ir[FFR_IR_RR] <= cfg.ir_min_mm + 0.5f);
+    feed(&r, &cfg, ir);
+    rig_tick(&r);
+    ffr_orient_begin(&r.st);
+    CHECK(ffr_orient_step(&r.st) == 0); /* CLEAR: the S begins */
+    CHECK(r.st.orient.leg == 1u && r.st.orient.reverse == 0u && r.st.orient.target_rad > 0.0f);
+    CHECK(ffr_orient_step(&r.st) == 0); /* ESCAPE: it moves */
+    CHECK(r.st.cmd_v_mm_s > 0.0f && r.st.cmd_w_rad_s > 0.0f);
+    {
+        /* a wall across 200 mm ahead as well: no room for the S there; it does
+         * not drive forward (as before) */
+        rig_walls_t corner = {2000.0f, -140.0f, 200.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        rig_init(&r, &cfg);
+        readings(&cfg, &corner, 0.0f, 0.0f, 0.0f, ir);
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+        ffr_orient_begin(&r.st);
+        CHECK(ffr_orient_step(&r.st) == 0);
+        (void)ffr_orient_step(&r.st);
+        CHECK(r.st.cmd_v_mm_s <= 0.0f); /* not forward into it */
+    }
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -1094,4 +1132,5 @@ SUITE(home_orient,
       TEST_REF(a_far_wall_end_beside_the_way_does_not_close_it),
       TEST_REF(the_front_shut_straight_back_before_the_s),
       TEST_REF(a_wall_line_in_the_sweep_brakes_at_once),
-      TEST_REF(the_sweep_turns_away_from_a_wall_beside));
+      TEST_REF(the_sweep_turns_away_from_a_wall_beside),
+      TEST_REF(a_wall_beside_below_the_span_is_no_end_of_the_s));
