@@ -21,10 +21,11 @@ def test_firmware_gives_up_is_error_with_reason() -> None:
     assert tuple(trace.actuators[-1, :2]) == (0, 0)
 
 
-@pytest.mark.parametrize("at_s", [15.6, 16.6])
+@pytest.mark.parametrize("at_s", [14.9, 15.2])
 def test_flame_gone_during_the_approach_is_flame_lost(at_s: float) -> None:
-    # room 1's approach runs 15.15-16.83 s; both flame sensors read 0 from at_s on: the flame, seen
-    # near and approached, is gone without being put out and a re-scan does not find it (fail code 5)
+    # room 1's approach runs 14.83-15.91 s, its fans on from 15.33 s (docs/firmware.md, "Room 1's
+    # time"); both flame sensors read 0 from at_s on, before the fans: the flame, seen near and
+    # approached, is gone without being put out and a re-scan does not find it (fail code 5)
     ev = parse_events([{"at_s": at_s, "sensor": s, "fault": "dead"} for s in ("flame.L", "flame.R")], "test")
     res, _ = run_mission(make_scenario(room=1, events=ev), record=False)
     assert res.outcome == "error"
@@ -32,6 +33,17 @@ def test_flame_gone_during_the_approach_is_flame_lost(at_s: float) -> None:
     assert res.time_to_extinguish_s is None and res.rooms_searched == 0
     # not before FFR_FLAME_LOST_MS (2 s) after the loss, nor long after (one re-scan turn: 2.4 s)
     assert 2.0 <= res.sim_time_s - at_s <= 3.0
+
+
+def test_flame_sensors_dead_under_the_fans_is_a_flame_still_burning() -> None:
+    # the same two sensors dead from 15.5 s, with the approach's fans already on: to the firmware the
+    # flame went out under its fans (it cannot tell a dead sensor from a blown-out flame), it goes
+    # home, and the plant's truth scores it: the flame still burns
+    ev = parse_events([{"at_s": 15.5, "sensor": s, "fault": "dead"} for s in ("flame.L", "flame.R")], "test")
+    res, _ = run_mission(make_scenario(room=1, events=ev), record=False)
+    assert res.outcome == "error"
+    assert res.detail == "firmware stopped with the flame still burning"
+    assert res.time_to_extinguish_s is None and res.rooms_searched == 1
 
 
 def test_timeout_when_the_flame_still_burns() -> None:
