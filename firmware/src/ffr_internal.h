@@ -334,10 +334,6 @@ float ffr_orient_square(const ffr_home_orient_t *o);
 float ffr_orient_free_mm(const ffr_home_orient_t *o, float band_mm, float dir, float cx, float cy);
 /* The same toward dir0 + k * 90 degrees, k = 0..3, in one pass. */
 void ffr_orient_free4(const ffr_home_orient_t *o, float band_mm, float dir0, float cx, float cy, float free_mm[4]);
-/* ...with the band narrowing by slope (mm per mm) with the distance along
- * each axis (the aim: far hits are placed with the sweep's heading error) */
-void ffr_orient_free4_cone(const ffr_home_orient_t *o, float band_mm, float slope, float dir0, float cx, float cy,
-                           float free_mm[4]);
 /* The route's first direction: k (0..3) of the four directions square to
  * the walls, dir0 + k * 90 degrees, by the home_wall_side rule; -1 none open. */
 int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,

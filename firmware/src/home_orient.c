@@ -258,12 +258,6 @@ float ffr_orient_free_mm(const ffr_home_orient_t *o, float band, float dir, floa
 
 void ffr_orient_free4(const ffr_home_orient_t *o, float band, float dir0, float cx, float cy, float free_mm[4])
 {
-    ffr_orient_free4_cone(o, band, 0.0f, dir0, cx, cy, free_mm);
-}
-
-void ffr_orient_free4_cone(const ffr_home_orient_t *o, float band, float slope, float dir0, float cx, float cy,
-                           float free_mm[4])
-{
     /* one pass, the points turned into the walls' frame once (a tick's
      * budget: four passes with their own trigonometry cost twice it) */
     float c = ffr_cosf(dir0), s = ffr_sinf(dir0);
@@ -280,14 +274,14 @@ void ffr_orient_free4_cone(const ffr_home_orient_t *o, float band, float slope, 
         qy = o->bin_y_mm[b] - cy;
         u = qx * c + qy * s;  /* along dir0      */
         v = qy * c - qx * s;  /* along dir0 + 90 */
-        if (ffr_absf(v) < band - slope * ffr_absf(u)) {
+        if (ffr_absf(v) < band) {
             if (u > 0.0f && u < free_mm[0]) {
                 free_mm[0] = u;
             } else if (u < 0.0f && -u < free_mm[2]) {
                 free_mm[2] = -u;
             }
         }
-        if (ffr_absf(u) < band - slope * ffr_absf(v)) {
+        if (ffr_absf(u) < band) {
             if (v > 0.0f && v < free_mm[1]) {
                 free_mm[1] = v;
             } else if (v < 0.0f && -v < free_mm[3]) {
