@@ -215,7 +215,7 @@ envelope: setup firmware-host
 	$(PY) -m harness.envelope
 
 # The robustness goals of issues 12 and 13, each row its own ffr command (harness/acceptance.py);
-# ACCEPT_ARGS e.g. --rows realistic,table1 or --firmware before=OLD/libffr.so --firmware now=build/host/libffr.so
+# ACCEPT_ARGS e.g. --rows realistic,table1, --rows held-out (the same commands on other seeds) or --firmware before=OLD/libffr.so --firmware now=build/host/libffr.so
 acceptance: setup firmware-host
 	$(PY) -m harness.acceptance $(ACCEPT_ARGS)
 

@@ -57,7 +57,8 @@ def test_one_percent_lost_or_garbled_same_mission(reference, url: str, room: int
         res, trace = run_mission(make_scenario(room=room), link)
         c = link.counters  # type: ignore[attr-defined]
         tx, rx = link.faults_tx.counters, link.faults_rx.counters  # type: ignore[attr-defined]
-    assert res.outcome == "home" and res.time_to_extinguish_s == ref.time_to_extinguish_s
+    assert res.outcome == "home", (res.detail, c)
+    assert res.time_to_extinguish_s == ref.time_to_extinguish_s
     _same(trace, ref_trace)
     # the faults happened, both ways, and were recovered by retries
     assert tx.dropped > 10 and tx.corrupted > 10 and rx.dropped > 10 and rx.corrupted > 10

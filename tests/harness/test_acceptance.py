@@ -75,3 +75,32 @@ def test_the_runner_runs_the_real_command_and_reads_its_json(capsys: pytest.Capt
     assert acc.main(["--rows", "table1", "--json", "-"]) == 0
     out = capsys.readouterr().out
     assert '"row": "table1"' in out and '"missions": 4' in out
+
+
+def test_held_out_rows_run_only_when_asked_and_have_no_goal() -> None:
+    default = acc._rows(None)
+    assert not set(default) & set(acc.HELD_OUT)
+    assert acc._rows("held-out") == list(acc.HELD_OUT)
+    assert acc._rows("all") == [*default, *acc.HELD_OUT]
+    keys = [r.key for r in acc._rows("all")]
+    assert len(keys) == len(set(keys))
+    assert all(r.goal_pct is None for r in acc.HELD_OUT)
+    _, cell = acc.measure(acc.HELD_OUT[0], None, None, lambda argv: _sweep_json(2000, 1))
+    assert cell.met is None
+
+
+@pytest.mark.parametrize("goal, held", [("realistic", "realistic-held"), ("jitter", "jitter-held"),
+                                        ("start", "start-held"), ("hallway", "hallway-held"),
+                                        ("furniture", "furniture-held")])
+def test_a_held_out_row_is_its_goal_rows_command_on_other_seeds(goal: str, held: str) -> None:
+    g, h = acc._rows(goal)[0], acc._rows(held)[0]
+
+    def seeds(argv: tuple[str, ...]) -> set[int]:
+        lo, hi = argv[argv.index("--seeds") + 1].split(":")
+        return set(range(int(lo), int(hi)))
+
+    def rest(argv: tuple[str, ...]) -> tuple[str, ...]:
+        i = argv.index("--seeds")
+        return argv[:i] + argv[i + 2:]
+
+    assert rest(g.argv) == rest(h.argv) and not seeds(g.argv) & seeds(h.argv)
