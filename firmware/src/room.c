@@ -23,6 +23,7 @@
  *   SCAN --a full turn, the approached flame lost > FFR_FLAME_LOST_MS--> failed (flame lost)
  *   APPROACH --stopped, flame near--> EXTINGUISH;  --at the door / flame far--> BACK_DRIVE
  *   APPROACH --flame lost--> SCAN
+ *   EXTINGUISH --strength stop, lit after the dwell--> APPROACH as a step (CLOSER_STEP_MM, CLOSER_STEPS)
  *   EXTINGUISH --out for flame_out_confirm_ms--> VERIFY;  --timeout--> EXTINGUISH,
  *              APPROACH as a creep (stopped by the wall guard alone, CREEP_MM),
  *              APPROACH (stopped by strength alone) or failed (not out)
