@@ -349,7 +349,7 @@ typedef struct {
     float entry_flame;             /* the strongest flame sum driving in (room.c) */
     int16_t deeper_mm;             /* how far the second scan point is beyond the first */
     uint8_t scans;                 /* scan points used in this room (1, or 2: deeper in) */
-    uint8_t reserved2;
+    uint8_t closer_steps;          /* steps closer made after a strength stop's fans failed (room.c) */
     ffr_obstacles_t obst;          /* the room's obstacles (obstacle_avoid.c)  */
     float entry_peak;              /* the entry's strongest flame signal so far (room_entry.c) */
     int16_t ahead_min_mm;          /* the approach's nearest front ranger reading so far (room_entry.c) */

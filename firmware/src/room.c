@@ -23,6 +23,7 @@
  *   SCAN --a full turn, the approached flame lost > FFR_FLAME_LOST_MS--> failed (flame lost)
  *   APPROACH --stopped, flame near--> EXTINGUISH;  --at the door / flame far--> BACK_DRIVE
  *   APPROACH --flame lost--> SCAN
+ *   EXTINGUISH --strength stop, lit after the dwell--> APPROACH as a step (CLOSER_STEP_MM, CLOSER_STEPS)
  *   EXTINGUISH --out for flame_out_confirm_ms--> VERIFY;  --timeout--> EXTINGUISH,
  *              APPROACH as a creep (stopped by the wall guard alone, CREEP_MM),
  *              APPROACH (stopped by strength alone) or failed (not out)
@@ -147,7 +148,25 @@ enum {
  * by the flame's strength (FLAME_REACH) beside a wall, then going closer;
  * found with the approach stopped by the wall guard alone (FOUND_BY_GUARD),
  * then creeping on (FOUND_CREEP) after a failed try of the fans */
-enum { FOUND = 1, FOUND_BY_STRENGTH = 2, FOUND_CLOSER = 3, FOUND_BY_GUARD = 4, FOUND_CREEP = 5 };
+enum { FOUND = 1, FOUND_BY_STRENGTH = 2, FOUND_CLOSER = 3, FOUND_BY_GUARD = 4, FOUND_CREEP = 5, FOUND_STEP = 6 };
+/* Stopped beside a wall by the flame's strength (FOUND_BY_STRENGTH), the fans
+ * blow for a dwell of STEP_DWELL_SHARE x fan_timeout_ms; the flame still lit,
+ * the robot goes CLOSER_STEP_MM closer at the creep's speed (FOUND_STEP, the
+ * approach's guards and steering) and the fans blow there, up to CLOSER_STEPS
+ * times, before the closer approach of old (FOUND_CLOSER, on to the line).
+ * A big flame's strength passes FLAME_REACH 33-49 cm from the fans' outlet
+ * (realistic strengths up to 1.4, flicker, the wall's reflection); the fans
+ * reach 30 cm within 30 degrees. The approach to the line from there ended
+ * with the flame 29-36 degrees off the axis or a front corner on the wall:
+ * short steps stop in the band between.
+ * chosen: 40 mm a step (the band is 10-15 cm deep along the traced approaches),
+ * 5 steps (20 mm short of the 49 cm stops' 19 cm), a dwell of 5 s at the default
+ * 8 s timeout (fan_timeout_ms is twice the paper's 4 s of air; the dwell
+ * leaves the wick's afterglow and the filter's lag on top of those 4 s) */
+#define CLOSER_STEP_MM 40.0f
+#define CLOSER_STEPS 5u
+#define STEP_DWELL_SHARE 0.625f
+#define STEP_LIT_SHARE 0.5f
 /* chosen: a creep after a failed fan try beside a wall goes at most this far
  * (mm): the traced stops left the flame 33-38 cm from the fans' outlet, 3-8 cm
  * beyond their 30 cm reach */
@@ -227,6 +246,7 @@ void ffr_room_begin(ffr_state_t *st, uint8_t room, float entry_heading_rad)
     st->room.entry_flame = 0.0f;
     st->room.deeper_mm = 0;
     st->room.scans = 1u;
+    st->room.closer_steps = 0u;
     ffr_obst_reset(&st->room.obst, st->odo.x_mm, st->odo.y_mm);
     st->room.scan_trail = 0;
     st->room.entry_peak = 0.0f;
@@ -427,6 +447,7 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
     int guard_stop, guard_near;
     const ffr_door_frame_t df = ffr_door_frame(st);
     const int creep = r->flame_found == FOUND_CREEP;
+    const int step = r->flame_found == FOUND_STEP;
     float guard_w;
     int front_stop;
     if (creep) {
@@ -444,7 +465,7 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
     /* near the flame (or going closer or creeping on after the fans) the
      * guards alone, as without furniture: the candle's own base is then in
      * the corridor */
-    float reach = (sig >= FLAME_NEAR * cfg->flame_detect || r->flame_near || r->flame_found == FOUND_CLOSER || creep)
+    float reach = (sig >= FLAME_NEAR * cfg->flame_detect || r->flame_near || r->flame_found == FOUND_CLOSER || step || creep)
                       ? 0.0f
                       : avoid_reach(st, sig);
     float detour = ffr_obst_detour(&r->obst, cfg, &st->odo, flame_dir, reach, &free_mm);
@@ -461,10 +482,16 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
     if (sig >= FLAME_NEAR * cfg->flame_detect) {
         r->flame_near = 1;
     }
-    if (guard_near && sig >= FLAME_REACH * cfg->flame_detect && r->flame_found != FOUND_CLOSER && !creep && !guard_stop) {
+    if (guard_near && sig >= FLAME_REACH * cfg->flame_detect && r->flame_found != FOUND_CLOSER && !step && !creep
+        && !guard_stop) {
         reach_stop = 1;
     }
     front_stop = ffr_front_distance(cfg, st->ir_mm) < cfg->approach_stop_mm;
+    /* a step closer after a strength stop ends at its length, as if the
+     * strength had stopped it there (nothing else stopping it) */
+    if (step && t->moved >= CLOSER_STEP_MM && !guard_stop && !front_stop && !ahead && !st->lines.edge) {
+        reach_stop = 1;
+    }
     /* a creep ends at its length, or with the nose at the doorway it came
      * in by: the flame is in this room (seen near, the fans tried), so the
      * fans go on there instead of backing out */
@@ -485,7 +512,8 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
         } else {
             r->flame_found = FOUND;
         }
-        if ((!creep && ffr_nose_in_doorway(st, &df)) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect)) {
+        if (!step
+            && ((!creep && ffr_nose_in_doorway(st, &df)) || (!st->lines.edge && sig < FLAME_NEAR * cfg->flame_detect))) {
             /* at the doorway it came in by, or stopped by a wall with the
              * flame still far: the flame is not in this room but seen
              * through its door. Back out and search on. */
@@ -503,9 +531,10 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
         r->flame_found = FOUND;
         return RP_EXTINGUISH;
     }
-    if (sig >= FLAME_REACH * cfg->flame_detect) {
-        /* within the fans' reach by its strength: on now, and on without a
-         * break into the fans' phase (the air counts from here) */
+    if (sig >= FLAME_REACH * cfg->flame_detect || step) {
+        /* within the fans' reach by its strength (or a step closer to a flame
+         * that strong): on now, and on without a break into the fans' phase
+         * (the air counts from here) */
         r->fans_early = 1u;
     }
     st->fan = r->fans_early;
@@ -517,7 +546,7 @@ static uint8_t on_approach(ffr_state_t *st, room_tick_t *t)
         }
         return RP_SCAN;
     }
-    if (creep) {
+    if (creep || step) {
         st->cmd_v_mm_s = ffr_proximity_speed(cfg, st->ir_mm, CREEP_SPEED_MM_S);
     } else {
         /* slowing for what is ahead to stop at the approach's own front stop
@@ -571,6 +600,20 @@ static uint8_t on_extinguish(ffr_state_t *st, room_tick_t *t)
         }
     } else {
         r->below_since_ms = 0u;
+    }
+    if (st->fan && r->flame_found == FOUND_BY_STRENGTH && r->closer_steps < CLOSER_STEPS
+        && r->flame_f >= STEP_LIT_SHARE * FLAME_REACH * cfg->flame_detect
+        && (float)t->elapsed >= STEP_DWELL_SHARE * (float)cfg->fan_timeout_ms) {
+        /* stopped by the flame's strength and still lit after the dwell: not
+         * within the fans' reach (a big flame reads near from farther). One
+         * step closer, then the fans again; the steps are no fan attempts.
+         * The fans stay on: a step that enters the reach counts from there.
+         * Still lit: at least half the strength that stopped it (flicker
+         * takes +-15 %); a flame put out reads its wick's glow, which falls
+         * to an eighth within the second the dwell leaves after the 4 s */
+        r->closer_steps = (uint8_t)(r->closer_steps + 1u);
+        r->flame_found = FOUND_STEP;
+        return RP_APPROACH;
     }
     if (st->fan && t->elapsed >= cfg->fan_timeout_ms) {
         next = fans_again(st, RP_EXTINGUISH);

@@ -236,8 +236,18 @@ TEST(flame_beyond_the_door_is_left_alone)
 }
 
 /* Flames differ in size: an approach stopped beside a wall by the flame's
- * strength alone (FLAME_REACH) goes closer when the fans do not put it out;
- * one stopped by the candle circle's line does not. */
+ * strength alone (FLAME_REACH) steps closer when the fans do not put it out
+ * (below), then, the steps made, goes on toward it; one stopped by the
+ * candle circle's line does not. */
+static int run_while(rig_t *r, uint8_t state, int max_ticks)
+{
+    int i;
+    for (i = 0; i < max_ticks && r->out.state == state; ++i) {
+        rig_tick(r);
+    }
+    return i;
+}
+
 TEST(a_flame_not_out_from_where_its_strength_said_is_approached_closer)
 {
     ffr_config_t cfg;
@@ -247,17 +257,21 @@ TEST(a_flame_not_out_from_where_its_strength_said_is_approached_closer)
     int k;
     for (k = 0; k < 3; ++k) {
         float s0;
+        int s;
         enter_and_scan(&r, &cfg, 0.0f, (float)peaks[k]);
         /* a wall near the left front corner, not touching: the guard's "near" */
         r.in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(&cfg, 120.0f);
-        for (i = 0; i < 50 && r.out.state == FFR_ST_APPROACH; ++i) {
-            rig_tick(&r);
-        }
+        (void)run_while(&r, FFR_ST_APPROACH, 50);
         CHECK(r.out.state == FFR_ST_EXTINGUISH);
-        /* the flame stays lit: after one attempt's fan time, on toward it */
-        for (i = 0; i < (int)(cfg.fan_timeout_ms / 10u) + 10 && r.out.state == FFR_ST_EXTINGUISH; ++i) {
-            rig_tick(&r);
+        /* the flame stays lit: the steps closer (5), each after a dwell */
+        for (s = 0; s < 5; ++s) {
+            (void)run_while(&r, FFR_ST_EXTINGUISH, (int)(cfg.fan_timeout_ms / 10u) + 10);
+            CHECK(r.out.state == FFR_ST_APPROACH);
+            (void)run_while(&r, FFR_ST_APPROACH, 400);
+            CHECK(r.out.state == FFR_ST_EXTINGUISH);
         }
+        /* then, after one attempt's fan time, on toward it */
+        (void)run_while(&r, FFR_ST_EXTINGUISH, (int)(cfg.fan_timeout_ms / 10u) + 10);
         CHECK(r.out.state == FFR_ST_APPROACH);
         CHECK(r.out.fan == 0);
         s0 = r.st.odo.dist_mm;
@@ -274,6 +288,98 @@ TEST(a_flame_not_out_from_where_its_strength_said_is_approached_closer)
             rig_tick(&r);
         }
         CHECK(r.out.state == FFR_ST_EXTINGUISH);
+    }
+}
+
+/* A big flame reads near by its strength from beyond the fans' reach: the
+ * approach stopped beside a wall by that strength alone blows for a dwell
+ * (5/8 of fan_timeout_ms), then, the flame still lit, steps 40 mm closer at
+ * the creep's speed with the fans on (no break), and blows again; 5 steps at
+ * most, none of them a fan attempt. Over the flame's strengths and dwells
+ * ended with the flame lit, put out (its wick's glow falling), or going out
+ * during a step. */
+TEST(a_flame_not_out_after_the_dwell_is_stepped_toward)
+{
+    static const uint16_t peaks[] = {1200, 1600, 2000, 2400};
+    unsigned k;
+    for (k = 0; k < 4; ++k) {
+        ffr_config_t cfg;
+        rig_t r;
+        int s, n;
+        float d0, v_max = 0.0f;
+        int fan_off = 0;
+        uint32_t t0;
+        enter_and_scan(&r, &cfg, 0.0f, (float)peaks[k]);
+        r.in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(&cfg, 120.0f);
+        (void)run_while(&r, FFR_ST_APPROACH, 50);
+        CHECK(r.out.state == FFR_ST_EXTINGUISH);
+        for (s = 0; s < 5; ++s) {
+            t0 = r.st.t_ms;
+            (void)run_while(&r, FFR_ST_EXTINGUISH, (int)(cfg.fan_timeout_ms / 10u) + 10);
+            /* the dwell, not the whole fan time */
+            CHECK(r.out.state == FFR_ST_APPROACH && r.out.fan == 1);
+            CHECK(r.st.t_ms - t0 >= 5000u - 20u && r.st.t_ms - t0 <= 5000u + 20u);
+            CHECK(r.st.room.attempts == 0u);
+            d0 = r.st.odo.dist_mm;
+            for (n = 0; n < 400 && r.out.state == FFR_ST_APPROACH; ++n) {
+                rig_tick(&r);
+                v_max = r.st.cmd_v_mm_s > v_max ? r.st.cmd_v_mm_s : v_max;
+                fan_off |= r.out.fan == 0;
+            }
+            CHECK(r.out.state == FFR_ST_EXTINGUISH && r.out.fan == 1);
+            CHECK(r.st.odo.dist_mm - d0 >= 40.0f && r.st.odo.dist_mm - d0 < 40.0f + 10.0f);
+            CHECK(v_max > 0.0f && v_max <= 60.0f + 0.5f);
+            CHECK(!fan_off);
+        }
+        /* the steps made: the whole fan time, then a fan attempt counted */
+        t0 = r.st.t_ms;
+        (void)run_while(&r, FFR_ST_EXTINGUISH, (int)(cfg.fan_timeout_ms / 10u) + 10);
+        CHECK(r.out.state == FFR_ST_APPROACH && r.st.t_ms - t0 >= cfg.fan_timeout_ms);
+        CHECK(r.st.room.attempts == 1u);
+    }
+    for (k = 0; k < 4; ++k) {
+        /* put out by the first dwell: the glow falls (tau 0.5 s) from 3 s on,
+         * no step; the fans' phase confirms it out and verifies */
+        ffr_config_t cfg;
+        rig_t r;
+        int i;
+        float glow = (float)peaks[k];
+        enter_and_scan(&r, &cfg, 0.0f, (float)peaks[k]);
+        r.in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(&cfg, 120.0f);
+        (void)run_while(&r, FFR_ST_APPROACH, 50);
+        CHECK(r.out.state == FFR_ST_EXTINGUISH);
+        (void)run_while(&r, FFR_ST_EXTINGUISH, 300);
+        for (i = 0; i < 600 && r.out.state == FFR_ST_EXTINGUISH; ++i) {
+            glow *= 0.98f; /* 10 ms of a 0.5 s time constant */
+            r.in.flame[0] = r.in.flame[1] = (uint16_t)(glow > 20.0f ? glow : 20.0f);
+            rig_tick(&r);
+        }
+        CHECK(r.out.state == FFR_ST_VERIFY);
+    }
+    for (k = 0; k < 4; ++k) {
+        /* put out during the first step: it stops and the fans' phase
+         * confirms it out (no backing out as from a far flame) */
+        ffr_config_t cfg;
+        rig_t r;
+        int i;
+        float glow = (float)peaks[k];
+        enter_and_scan(&r, &cfg, 0.0f, (float)peaks[k]);
+        r.in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(&cfg, 120.0f);
+        (void)run_while(&r, FFR_ST_APPROACH, 50);
+        (void)run_while(&r, FFR_ST_EXTINGUISH, (int)(cfg.fan_timeout_ms / 10u) + 10);
+        CHECK(r.out.state == FFR_ST_APPROACH);
+        for (i = 0; i < 400 && r.out.state == FFR_ST_APPROACH; ++i) {
+            glow *= 0.95f; /* below FLAME_NEAR at the step's end: not a far flame */
+            r.in.flame[0] = r.in.flame[1] = (uint16_t)(glow > 20.0f ? glow : 20.0f);
+            rig_tick(&r);
+        }
+        CHECK(r.out.state == FFR_ST_EXTINGUISH && r.out.fan == 1);
+        for (i = 0; i < 300 && r.out.state == FFR_ST_EXTINGUISH; ++i) {
+            glow *= 0.98f;
+            r.in.flame[0] = r.in.flame[1] = (uint16_t)(glow > 20.0f ? glow : 20.0f);
+            rig_tick(&r);
+        }
+        CHECK(r.out.state == FFR_ST_VERIFY);
     }
 }
 
@@ -480,6 +586,7 @@ SUITE(robustness,
       TEST_REF(leaving_a_room_steers_a_front_corner_off_a_wall),
       TEST_REF(a_flame_reflection_in_a_near_wall_does_not_end_the_scan),
       TEST_REF(a_flame_not_out_from_where_its_strength_said_is_approached_closer),
+      TEST_REF(a_flame_not_out_after_the_dwell_is_stepped_toward),
       TEST_REF(flame_dark_level_is_learned),
       TEST_REF(openings_by_the_rear_ranger),
       TEST_REF(an_opening_seen_past_its_wall_end_survives_its_far_side),
