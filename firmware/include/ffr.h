@@ -247,7 +247,8 @@ typedef struct {
     int16_t case_turn_deg;         /* turn chosen by the wall case            */
     uint8_t phase;
     uint8_t pc;                    /* route program counter                   */
-    uint8_t reserved[4];
+    float exit_wall_rad;           /* out of a room: a wall alongside the way out, its angle to
+                                      the held heading off square (route.c); FFR_EXIT_WALL_NONE none */
 } ffr_route_state_t;
 
 /* One side ranger's hits in odometry's frame over a stretch of travel

@@ -315,7 +315,11 @@ void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed);
  * turn rate. Called by the corridor driving and the route's last stretches. */
 void ffr_corridor_guard(ffr_state_t *st);
 /* route.c: out of a room, odometry's heading set square to the wall ahead when far off it */
-void ffr_square_on_wall_ahead(ffr_state_t *st);
+int ffr_square_on_wall_ahead(ffr_state_t *st);
+/* route.exit_wall_rad when no wall alongside the way out was seen */
+#define FFR_EXIT_WALL_NONE 10.0f
+void ffr_exit_wall_watch(ffr_state_t *st);
+int ffr_square_on_wall_beside(ffr_state_t *st);
 void ffr_drive_heading(ffr_state_t *st, float heading, float speed);
 void ffr_stop(ffr_state_t *st);
 /* Speed (mm/s) for `remaining_mm` to a stopping point: slows into the stop

@@ -31,7 +31,7 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->route.case_turn_deg = 0;
     st->route.phase = 0;
     st->route.pc = 0;
-    st->route.reserved[0] = st->route.reserved[1] = st->route.reserved[2] = st->route.reserved[3] = 0;
+    st->route.exit_wall_rad = FFR_EXIT_WALL_NONE;
     ffr_wall_cal_reset(&st->wall_cal);
     ffr_orient_reset(&st->orient, &st->odo);
     ffr_explore_reset(&st->explore);

@@ -757,6 +757,7 @@ static uint8_t on_leave_line(ffr_state_t *st, room_tick_t *t)
     }
     ffr_drive_heading(st, st->room.exit_heading_rad, cfg->room_speed_mm_s);
     st->cmd_w_rad_s += ffr_leave_guard(st);
+    ffr_exit_wall_watch(st);
     return next;
 }
 
@@ -770,6 +771,7 @@ static uint8_t on_leave_out(ffr_state_t *st, room_tick_t *t)
     }
     ffr_drive_heading(st, st->room.exit_heading_rad, ffr_stopping_speed(cfg->room_exit_mm - t->moved, cfg->room_speed_mm_s));
     st->cmd_w_rad_s += ffr_leave_guard(st);
+    ffr_exit_wall_watch(st);
     return RP_STAY;
 }
 

@@ -133,14 +133,14 @@ static int drive_to_goal(ffr_state_t *st)
 /* a wall further off than this is not the corridor's far wall (a corner) */
 #define SQUARE_MAX_DEG 30.0f
 
-void ffr_square_on_wall_ahead(ffr_state_t *st)
+int ffr_square_on_wall_ahead(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
     const ffr_ir_geom_t *g = &st->ir_geom;
     float xl, yl, xr, yr, xc, wall, held, off;
     if (!ffr_ir_valid(cfg, st->ir_mm[FFR_IR_LF]) || !ffr_ir_valid(cfg, st->ir_mm[FFR_IR_RF])
         || !ffr_ir_valid(cfg, st->ir_mm[FFR_IR_CF])) {
-        return;
+        return 0;
     }
     xl = g->hit_x_mm[FFR_IR_LF];
     yl = g->hit_y_mm[FFR_IR_LF];
@@ -153,12 +153,12 @@ void ffr_square_on_wall_ahead(ffr_state_t *st)
     if (st->ir_mm[FFR_IR_LF] > SQUARE_RANGE_MM || st->ir_mm[FFR_IR_RF] > SQUARE_RANGE_MM
         || st->ir_mm[FFR_IR_CF] > SQUARE_RANGE_MM || yl <= 0.0f || yr >= 0.0f
         || ffr_absf(xl + (0.0f - yl) * (xr - xl) / (yr - yl) - xc) > SQUARE_SAME_WALL_MM) {
-        return;
+        return 0;
     }
     /* the robot turned by `wall` off the wall's normal (left positive) */
     wall = ffr_atan2f(xl - xr, yl - yr);
     if (ffr_absf(wall) > SQUARE_MAX_DEG * FFR_DEG) {
-        return;
+        return 0;
     }
     held = ffr_wrap_pi(st->odo.heading_rad - st->route.heading_ref_rad);
     off = wall - held; /* what odometry's heading is short of the truth */
@@ -167,6 +167,49 @@ void ffr_square_on_wall_ahead(ffr_state_t *st)
     } else if (off < -SQUARE_MIN_DEG * FFR_DEG) {
         st->odo.heading_rad += off + SQUARE_KEEP_DEG * FFR_DEG;
     }
+    return 1;
+}
+
+/* The wall alongside the way out of a room. The 2004 arena's doors (and a
+ * contest room's in general: a door at a room's corner) have a wall running
+ * on along the way out, and at a corridor's end (room 3's door) the wall
+ * ahead is too short for the three front rangers: one of them sees the wall
+ * beside or looks through the next door. While the robot drives out on the
+ * exit heading, each side ranger's hits over 12 cm of travel
+ * (wall_direction.c) give that wall's direction in odometry's frame,
+ * whatever the part's offset; off square with the held heading it is
+ * odometry's error. Taken at the room's end when the wall ahead could not
+ * square it: beyond EXIT_MIN_DEG, all of it but EXIT_KEEP_DEG (chosen: a
+ * window's direction is good to ~2 degrees, a jittered arena's wall a few
+ * more); beyond EXIT_MAX_DEG (drive.c's SNAP_MAX_DEG) it is not such a wall. */
+#ifndef EXIT_MIN_DEG
+#define EXIT_MIN_DEG 8.0f
+#endif
+#ifndef EXIT_KEEP_DEG
+#define EXIT_KEEP_DEG 3.0f
+#endif
+#define EXIT_MAX_DEG 25.0f
+
+void ffr_exit_wall_watch(ffr_state_t *st)
+{
+    float dir;
+    if (ffr_wall_dir_update(&st->wall_cal, &st->cfg, &st->odo, &st->ir_geom, st->ir_mm, &dir)) {
+        /* the held heading is the exit heading all the way out */
+        st->route.exit_wall_rad = ffr_off_square(ffr_wrap_pi(dir - st->route.heading_ref_rad));
+    }
+}
+
+int ffr_square_on_wall_beside(ffr_state_t *st)
+{
+    float e = st->route.exit_wall_rad;
+    st->route.exit_wall_rad = FFR_EXIT_WALL_NONE;
+    if (e == FFR_EXIT_WALL_NONE || ffr_absf(e) > EXIT_MAX_DEG * FFR_DEG || ffr_absf(e) < EXIT_MIN_DEG * FFR_DEG) {
+        return 0;
+    }
+    /* the wall's direction is e off the held heading in odometry's frame:
+     * odometry's heading is e too far the same way */
+    st->odo.heading_rad -= e > 0.0f ? e - EXIT_KEEP_DEG * FFR_DEG : e + EXIT_KEEP_DEG * FFR_DEG;
+    return 1;
 }
 
 static int event_fired(ffr_state_t *st, const ffr_step_t *s)
@@ -259,9 +302,15 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
         case FFR_ROOM_FACING_OUT:
             /* the corridor heading reversed: later turns stay square to the walls */
             st->route.heading_ref_rad = st->room.exit_heading_rad;
+            /* the walls alongside the way out, from here on */
+            ffr_wall_dir_reset(&st->wall_cal);
+            st->route.exit_wall_rad = FFR_EXIT_WALL_NONE;
             break;
         case FFR_ROOM_LEFT:
-            ffr_square_on_wall_ahead(st);
+            if (!ffr_square_on_wall_ahead(st)) {
+                (void)ffr_square_on_wall_beside(st);
+            }
+            st->route.exit_wall_rad = FFR_EXIT_WALL_NONE;
             st->rooms_searched = (uint8_t)(st->rooms_searched + 1u);
             if (st->flags & FFR_FLAG_EXTINGUISHED) {
                 st->returning = 1;

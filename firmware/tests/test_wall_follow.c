@@ -307,6 +307,65 @@ TEST(out_of_a_room_the_heading_is_set_square_to_the_wall_ahead_when_far_off)
     CHECK_NEAR(square_through_a_door(), 0.0f, 1e-6f);
 }
 
+/* Out of a room along a wall (route.c, ffr_exit_wall_watch and
+ * ffr_square_on_wall_beside): the robot drives 400 mm out holding the exit
+ * heading by odometry while it is truly turned `psi` off the wall beside
+ * it (right, 250 mm; its parts reading 30 mm long and short: the windows'
+ * direction does not depend on them). Within EXIT_MIN_DEG (8) nothing
+ * changes; beyond it odometry is set to within EXIT_KEEP_DEG (3) of the
+ * wall; a wall more than 20 degrees off the travel is not one the windows
+ * take, and no wall beside (or a watch that saw none) changes nothing. */
+static float beside_after(float psi, int wall)
+{
+    rig_t r;
+    ffr_config_t cfg;
+    rig_walls_t w = {5000.0f, -250.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 30.0f, 0.0f, -30.0f}};
+    float ref0 = 0.5f * FFR_PI, s, rot = ref0 - psi; /* odometry's frame: the world turned by rot */
+    ffr_config_default(&cfg);
+    rig_init(&r, &cfg);
+    if (!wall) {
+        w.right_y = -5000.0f;
+    }
+    r.st.route.heading_ref_rad = ref0;
+    r.st.route.exit_wall_rad = FFR_EXIT_WALL_NONE;
+    ffr_wall_dir_reset(&r.st.wall_cal);
+    for (s = 0.0f; s <= 400.0f; s += 3.0f) {
+        float x = s * ffr_cosf(psi), y = s * ffr_sinf(psi);
+        int i;
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            r.st.ir_mm[i] = rig_beam_mm(&cfg, &w, i, x, y, psi);
+        }
+        rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
+        r.st.odo.x_mm = ffr_cosf(rot) * x - ffr_sinf(rot) * y;
+        r.st.odo.y_mm = ffr_sinf(rot) * x + ffr_cosf(rot) * y;
+        r.st.odo.heading_rad = ref0; /* held by odometry all the way */
+        r.st.odo.dist_mm = s;
+        ffr_exit_wall_watch(&r.st);
+    }
+    (void)ffr_square_on_wall_beside(&r.st);
+    CHECK(r.st.route.exit_wall_rad == FFR_EXIT_WALL_NONE); /* taken once */
+    return r.st.odo.heading_rad - ref0;
+}
+
+TEST(out_of_a_room_the_heading_is_set_square_to_the_wall_beside_when_far_off)
+{
+    int a;
+    for (a = -30; a <= 30; ++a) {
+        float psi = (float)a * FFR_DEG;
+        float got = beside_after(psi, 1);
+        if (a >= -7 && a <= 7) {
+            CHECK_NEAR(got, 0.0f, 1e-6f);
+        } else if (a >= 9 && a <= 19) {
+            CHECK_NEAR(got, psi - 3.0f * FFR_DEG, 0.3f * FFR_DEG);
+        } else if (a <= -9 && a >= -19) {
+            CHECK_NEAR(got, psi + 3.0f * FFR_DEG, 0.3f * FFR_DEG);
+        } else if (a <= -22 || a >= 22) {
+            CHECK_NEAR(got, 0.0f, 1e-6f);
+        }
+        CHECK_NEAR(beside_after(psi, 0), 0.0f, 1e-6f);
+    }
+}
+
 SUITE(wall_follow,
       TEST_REF(a_parallel_wall_on_target_needs_no_steering),
       TEST_REF(turned_toward_a_wall_steers_away),
@@ -316,4 +375,5 @@ SUITE(wall_follow,
       TEST_REF(a_front_corner_near_a_side_wall_is_steered_off_it),
       TEST_REF(on_the_corridor_middle_the_corner_guard_does_nothing),
       TEST_REF(the_last_stretch_past_an_opening_keeps_a_front_corner_off_a_wall),
-      TEST_REF(out_of_a_room_the_heading_is_set_square_to_the_wall_ahead_when_far_off));
+      TEST_REF(out_of_a_room_the_heading_is_set_square_to_the_wall_ahead_when_far_off),
+      TEST_REF(out_of_a_room_the_heading_is_set_square_to_the_wall_beside_when_far_off));
