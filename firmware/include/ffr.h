@@ -415,7 +415,7 @@ typedef struct {
     uint8_t backing;               /* wrap: backing to an opening's middle passed */
     uint8_t reserved;
     float start_mm;                /* odometry distance where the phase began (a follow: its leg, the probe before it included) */
-    float goal_mm;                 /* distance goal (wrap, home, back)        */
+    float goal_mm;                 /* distance goal (wrap, home, back; backing: along the held heading) */
     float edge_mm;                 /* where the last line edge was crossed (-1: none to pair) */
     float target_rad;              /* the current turn's target               */
     float home_mm;                 /* where the home circle was last recognised */

@@ -190,6 +190,13 @@ static void hold_hallway(ffr_state_t *st)
     }
 }
 
+/* odometry's position along the held heading, mm */
+static float along(const ffr_state_t *st)
+{
+    float h = st->route.heading_ref_rad;
+    return st->odo.x_mm * ffr_cosf(h) + st->odo.y_mm * ffr_sinf(h);
+}
+
 static void follow(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -236,10 +243,11 @@ static void follow(ffr_state_t *st)
             e->phase = EX_WRAP;
             if (e->goal_mm < st->odo.dist_mm) {
                 /* its far edge is first seen about as far ahead as half a
-                 * hallway: the middle may be passed already; back to it
-                 * (path length counts either way) */
+                 * hallway: the middle may be passed already; back to it,
+                 * measured along the held heading (the path length counts
+                 * the stop's coasting on as well as the way back) */
                 e->backing = 1;
-                e->goal_mm = 2.0f * st->odo.dist_mm - e->goal_mm;
+                e->goal_mm = along(st) - (st->odo.dist_mm - e->goal_mm);
             }
         } else if (ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
             int deg = ffr_wall_case_turn(ffr_wall_case_sensed(cfg, st->ir_mm, &st->open), e->side);
@@ -262,6 +270,7 @@ static void follow(ffr_state_t *st)
     {
         float left = e->goal_mm - st->odo.dist_mm;
         if (e->backing) {
+            left = along(st) - e->goal_mm;
             if (left <= 0.0f) {
                 turn(st, toward(e), EX_PROBE);
                 return;
