@@ -413,9 +413,10 @@ typedef struct {
     uint8_t homes;                 /* home circles crossed so far             */
     uint8_t bent;                  /* a turn since the last line edge         */
     uint8_t rooms_at_flip;         /* rooms_searched when the walls last changed */
-    uint8_t reserved[2];
-    float start_mm;                /* odometry distance where the phase began */
-    float goal_mm;                 /* distance goal (wrap, home, back)        */
+    uint8_t backing;               /* wrap: backing to an opening's middle passed */
+    uint8_t reserved;
+    float start_mm;                /* odometry distance where the phase began (a follow: its leg, the probe before it included) */
+    float goal_mm;                 /* distance goal (wrap, home, back; backing: along the held heading) */
     float edge_mm;                 /* where the last line edge was crossed (-1: none to pair) */
     float target_rad;              /* the current turn's target               */
     float home_mm;                 /* where the home circle was last recognised */

@@ -51,7 +51,8 @@ void ffr_explore_reset(ffr_explore_t *e)
     e->homes = 0;
     e->bent = 0;
     e->rooms_at_flip = 0;
-    e->reserved[0] = e->reserved[1] = 0;
+    e->backing = 0;
+    e->reserved = 0;
     e->start_mm = 0.0f;
     e->goal_mm = 0.0f;
     e->edge_mm = EX_NO_EDGE;
@@ -76,10 +77,16 @@ static void phase(ffr_state_t *st, uint8_t p)
                                                FFR_ST_ENTER,  FFR_ST_HOMING, FFR_ST_FORWARD, FFR_ST_DONE};
     ffr_explore_t *e = &st->explore;
     /* a probe that found a hallway goes on as the follow: what its rangers
-     * saw of the walls beside it stays (a short wall's end is an opening) */
-    int keep = p == EX_ROOM || (p == EX_FOLLOW && e->phase == EX_PROBE);
+     * saw of the walls beside it stays (a short wall's end is an opening),
+     * and so does where the leg began (the probe is its first stretch: an
+     * opening's far edge is counted from there, as its rangers saw it) */
+    int on = p == EX_FOLLOW && e->phase == EX_PROBE;
+    int keep = p == EX_ROOM || on;
+    if (!on) {
+        e->start_mm = st->odo.dist_mm;
+    }
     e->phase = p;
-    e->start_mm = st->odo.dist_mm;
+    e->backing = 0;
     st->state = codes[p];
     if (!keep) {
         ffr_wall_cal_restart(&st->wall_cal);
@@ -160,9 +167,34 @@ static int line_edge(ffr_state_t *st)
         e->rooms_at_flip = st->rooms_searched;
         e->side = (uint8_t)(1u - e->side);
         e->phase = EX_FOLLOW;
+        e->backing = 0;
         st->state = FFR_ST_FOLLOW;
     }
     return 1;
+}
+
+#ifndef EX_YAW_MAX_DEG
+#define EX_YAW_MAX_DEG 10.0f
+#endif
+/* The hallway runs along the held heading (square, kept true by the walls):
+ * the wall following swings the body no further off it than
+ * EX_YAW_MAX_DEG. A wall line that asks for more is two faces seen across an
+ * opening on the steering side (a door's far jamb and the hallway wall
+ * behind it), and turning after it yaws the followed side's rangers off
+ * their wall (an opening seen early). */
+static void hold_hallway(ffr_state_t *st)
+{
+    float off = ffr_wrap_pi(st->odo.heading_rad - st->route.heading_ref_rad);
+    if (ffr_absf(off) > EX_YAW_MAX_DEG * FFR_DEG && off * st->cmd_w_rad_s > 0.0f && ffr_leave_guard(st) == 0.0f) {
+        st->cmd_w_rad_s = ffr_heading_hold_yaw(&st->cfg, st->odo.heading_rad, st->route.heading_ref_rad);
+    }
+}
+
+/* odometry's position along the held heading, mm */
+static float along(const ffr_state_t *st)
+{
+    float h = st->route.heading_ref_rad;
+    return st->odo.x_mm * ffr_cosf(h) + st->odo.y_mm * ffr_sinf(h);
 }
 
 static void follow(ffr_state_t *st)
@@ -181,10 +213,23 @@ static void follow(ffr_state_t *st)
             turn(st, 180, EX_FOLLOW);
             return;
         }
+        if (ffr_opening(&st->open, e->side)
+            && st->open.open_at_mm[e->side] + cfg->hallway_half_mm < e->start_mm) {
+            /* a wall end seen by the rear ranger alone, its opening's middle
+             * behind where the leg began: the door the robot has just come
+             * out of (it stood in it); not taken, the side watched afresh */
+            st->open.opened[e->side] = 0;
+            st->open.seen[e->side] = 0;
+            st->open.seen_mm[e->side] = 0.0f;
+            ffr_drive_corridor(st, (uint8_t)(1u - e->side), cfg->cruise_speed_mm_s);
+            hold_hallway(st);
+            return;
+        }
         if (ffr_opening(&st->open, e->side)) {
             /* on until the origin is in the opening's middle */
             e->goal_mm = st->open.open_at_mm[e->side] + cfg->hallway_half_mm;
             e->phase = EX_WRAP;
+            e->backing = 0;
         } else if (ffr_gap(&st->open, e->side, 0)
                    && st->open.gap_end_mm[e->side] - e->start_mm > 2.0f * cfg->hallway_half_mm) {
             /* an opening open since the leg began (beside the robot when it
@@ -196,6 +241,14 @@ static void follow(ffr_state_t *st)
              * leg's start: that is the door the robot has just come out of */
             e->goal_mm = ffr_gap_middle_mm(&st->open, cfg, e->side);
             e->phase = EX_WRAP;
+            if (e->goal_mm < st->odo.dist_mm) {
+                /* its far edge is first seen about as far ahead as half a
+                 * hallway: the middle may be passed already; back to it,
+                 * measured along the held heading (the path length counts
+                 * the stop's coasting on as well as the way back) */
+                e->backing = 1;
+                e->goal_mm = along(st) - (st->odo.dist_mm - e->goal_mm);
+            }
         } else if (ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
             int deg = ffr_wall_case_turn(ffr_wall_case_sensed(cfg, st->ir_mm, &st->open), e->side);
             if (deg == 0) {
@@ -209,12 +262,22 @@ static void follow(ffr_state_t *st)
             /* steered by the far wall where there is one: the followed wall's
              * end (a door's jamb) would draw the robot into the opening */
             ffr_drive_corridor(st, (uint8_t)(1u - e->side), cfg->cruise_speed_mm_s);
+            hold_hallway(st);
             return;
         }
     }
     /* EX_WRAP: straight on the held heading to the opening's middle */
     {
         float left = e->goal_mm - st->odo.dist_mm;
+        if (e->backing) {
+            left = along(st) - e->goal_mm;
+            if (left <= 0.0f) {
+                turn(st, toward(e), EX_PROBE);
+                return;
+            }
+            ffr_drive_heading(st, st->route.heading_ref_rad, -ffr_stopping_speed(left, cfg->room_speed_mm_s));
+            return;
+        }
         if (left <= 0.0f || ffr_front_now(cfg, &st->odo, st->ir_mm) < cfg->front_stop_mm) {
             turn(st, toward(e), EX_PROBE);
             return;

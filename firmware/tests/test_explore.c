@@ -130,9 +130,167 @@ TEST(a_lone_line_on_the_way_home_turns_the_robot_round)
     CHECK(!(r.out.flags & FFR_FLAG_DONE));
 }
 
+
+/* the explorer's phases as outputs.step reports them (explore.c) */
+enum { PH_FOLLOW = 0, PH_WRAP = 1, PH_TURN = 2, PH_PROBE = 3 };
+
+TEST(a_whole_opening_whose_middle_is_passed_is_backed_to_then_turned_into)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    float d, x0;
+    int i;
+    ffr_config_default(&cfg);
+    cfg.start_area = FFR_START_HALLWAY;
+    started_in_a_hallway(&r, &cfg);
+    /* an opening on the followed side seen whole (open, then its far edge
+     * 180 mm ahead): its middle, half a hallway before that edge, is 50 mm
+     * behind the robot; the leg began 600 mm back (not the door just left) */
+    d = r.st.odo.dist_mm;
+    x0 = r.st.odo.x_mm;
+    r.st.explore.start_mm = d - 600.0f;
+    r.st.open.gaps[FFR_SIDE_RIGHT] = 1;
+    r.st.open.gap_end_mm[FFR_SIDE_RIGHT] = d + cfg.hallway_half_mm - 50.0f;
+    rig_tick(&r);
+    CHECK(r.out.step == PH_WRAP);
+    CHECK(r.st.explore.backing == 1);
+    CHECK(r.st.cmd_v_mm_s < 0.0f); /* backing */
+    CHECK(rig_run_until_state(&r, FFR_ST_TURN, 300));
+    /* back to the middle, 50 mm behind (along the held heading: the stop's
+     * coasting on is backed too), then the quarter turn toward the
+     * followed wall */
+    CHECK(r.st.odo.x_mm < x0 - 45.0f && r.st.odo.x_mm > x0 - 60.0f);
+    CHECK_NEAR(r.st.explore.target_rad - r.st.route.heading_ref_rad, -0.5f * FFR_PI, 1e-5);
+    CHECK(r.st.explore.backing == 0);
+
+    /* its middle still ahead: on to it, no backing */
+    started_in_a_hallway(&r, &cfg);
+    d = r.st.odo.dist_mm;
+    r.st.explore.start_mm = d - 600.0f;
+    r.st.open.gaps[FFR_SIDE_RIGHT] = 1;
+    r.st.open.gap_end_mm[FFR_SIDE_RIGHT] = d + cfg.hallway_half_mm + 100.0f;
+    rig_tick(&r);
+    CHECK(r.out.step == PH_WRAP);
+    CHECK(r.st.explore.backing == 0);
+    for (i = 0; i < 5; ++i) {
+        rig_tick(&r);
+    }
+    CHECK(r.st.cmd_v_mm_s > 0.0f);
+}
+
+TEST(a_probe_that_finds_a_hallway_keeps_where_the_leg_began)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    float d, start;
+    ffr_config_default(&cfg);
+    cfg.start_area = FFR_START_HALLWAY;
+    started_in_a_hallway(&r, &cfg);
+    /* a probe 301 mm on with no line: a hallway, the follow goes on */
+    d = r.st.odo.dist_mm;
+    start = d - 301.0f;
+    r.st.explore.phase = PH_PROBE;
+    r.st.state = FFR_ST_FORWARD;
+    r.st.explore.start_mm = start;
+    rig_tick(&r);
+    CHECK(r.out.step == PH_FOLLOW);
+    CHECK(r.st.explore.start_mm == start);
+    /* an opening seen whole, its far edge 250 mm ahead: 550 mm from where
+     * the leg began, more than a hallway's width, so not the door just left */
+    d = r.st.odo.dist_mm;
+    r.st.open.gaps[FFR_SIDE_RIGHT] = 1;
+    r.st.open.gap_end_mm[FFR_SIDE_RIGHT] = d + 250.0f;
+    rig_tick(&r);
+    CHECK(r.out.step == PH_WRAP);
+    CHECK_NEAR(r.st.explore.goal_mm, d + 250.0f - cfg.hallway_half_mm, 1e-3);
+
+    /* the same opening when the leg began at a turn (out of a door) just
+     * before: within a hallway's width of its start, the door just left */
+    started_in_a_hallway(&r, &cfg);
+    r.st.explore.phase = PH_TURN;
+    r.st.state = FFR_ST_TURN;
+    r.st.explore.after = PH_FOLLOW;
+    r.st.explore.target_rad = r.st.odo.heading_rad;
+    rig_tick(&r);
+    CHECK(r.out.step == PH_FOLLOW);
+    d = r.st.odo.dist_mm;
+    CHECK(r.st.explore.start_mm > d - 20.0f);
+    r.st.open.gaps[FFR_SIDE_RIGHT] = 1;
+    r.st.open.gap_end_mm[FFR_SIDE_RIGHT] = d + 250.0f;
+    rig_tick(&r);
+    CHECK(r.out.step == PH_FOLLOW);
+}
+
+/* the far (left) wall 330 mm off on both its rangers: the wall following
+ * asks to turn toward it (left) */
+static float follow_yaw_with_heading_off(float off_deg)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    ffr_config_default(&cfg);
+    cfg.start_area = FFR_START_HALLWAY;
+    started_in_a_hallway(&r, &cfg);
+    r.in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(&cfg, 330.0f);
+    r.in.ir_mv[FFR_IR_LR] = rig_mv_for_mm(&cfg, 330.0f);
+    r.in.ir_mv[FFR_IR_RF] = 0;
+    r.in.ir_mv[FFR_IR_RR] = 0;
+    r.st.odo.heading_rad = r.st.route.heading_ref_rad + off_deg * FFR_DEG;
+    rig_tick(&r);
+    CHECK(r.out.step == PH_FOLLOW);
+    return r.st.cmd_w_rad_s;
+}
+
+TEST(the_follow_holds_the_hallway_heading_within_ten_degrees)
+{
+    /* 5 degrees off the held heading: the wall following steers on, left */
+    CHECK(follow_yaw_with_heading_off(5.0f) > 0.0f);
+    CHECK(follow_yaw_with_heading_off(-5.0f) > 0.0f);
+    /* 12 degrees off already to the left: no further, back toward the
+     * hallway's heading (right) */
+    CHECK(follow_yaw_with_heading_off(12.0f) < 0.0f);
+    /* 12 degrees off to the right: the steering left brings it back, kept */
+    CHECK(follow_yaw_with_heading_off(-12.0f) > 0.0f);
+}
+
+TEST(a_wall_end_behind_where_the_leg_began_is_the_door_just_left)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    float start;
+    ffr_config_default(&cfg);
+    cfg.start_area = FFR_START_HALLWAY;
+    started_in_a_hallway(&r, &cfg);
+    /* the rear ranger's wall ended 300 mm before the leg began: the
+     * opening's middle is 70 mm behind that start (the robot stood in it) */
+    start = r.st.odo.dist_mm - 20.0f;
+    r.st.explore.start_mm = start;
+    r.st.open.opened[FFR_SIDE_RIGHT] = 1;
+    r.st.open.seen[FFR_SIDE_RIGHT] = 1;
+    r.st.open.open_at_mm[FFR_SIDE_RIGHT] = start - 300.0f;
+    rig_tick(&r);
+    CHECK(r.out.step == PH_FOLLOW);
+    CHECK(r.st.open.opened[FFR_SIDE_RIGHT] == 0); /* watched afresh */
+    CHECK(r.st.cmd_v_mm_s > 0.0f);
+
+    /* ended 200 mm before: its middle 30 mm past the start, taken */
+    started_in_a_hallway(&r, &cfg);
+    start = r.st.odo.dist_mm - 20.0f;
+    r.st.explore.start_mm = start;
+    r.st.open.opened[FFR_SIDE_RIGHT] = 1;
+    r.st.open.seen[FFR_SIDE_RIGHT] = 1;
+    r.st.open.open_at_mm[FFR_SIDE_RIGHT] = start - 200.0f;
+    rig_tick(&r);
+    CHECK(r.out.step == PH_WRAP);
+    CHECK_NEAR(r.st.explore.goal_mm, start + 30.0f, 1e-3);
+}
+
 SUITE(explore,
       TEST_REF(the_home_circle_is_two_lines_a_chord_apart),
       TEST_REF(turn_targets_are_square_to_the_walls),
       TEST_REF(the_mode_switch_is_off_by_default),
       TEST_REF(in_a_hallway_it_follows_passes_home_and_stops_there_with_the_flame_out),
-      TEST_REF(a_lone_line_on_the_way_home_turns_the_robot_round));
+      TEST_REF(a_lone_line_on_the_way_home_turns_the_robot_round),
+      TEST_REF(a_whole_opening_whose_middle_is_passed_is_backed_to_then_turned_into),
+      TEST_REF(a_probe_that_finds_a_hallway_keeps_where_the_leg_began),
+      TEST_REF(the_follow_holds_the_hallway_heading_within_ten_degrees),
+      TEST_REF(a_wall_end_behind_where_the_leg_began_is_the_door_just_left));
