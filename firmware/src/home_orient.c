@@ -120,7 +120,8 @@ void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
     o->probe_done = 0u;
     o->folded = 0u;
     o->sweep_side = 0;
-    o->reserved[0] = o->reserved[1] = 0u;
+    o->after_shift = 0u;
+    o->reserved = 0u;
     o->leg_mm = 0.0f;
     o->near_mm = 65535.0f;
     o->near_x_mm = 0.0f;
@@ -1020,6 +1021,34 @@ static int escape_free(const ffr_state_t *st)
                need + 0.9f * ((o->goal_mm - st->odo.dist_mm) + o->leg_mm);
 }
 
+/* Room to turn again after the shift, before the aim's turn in place. The
+ * shift drives to where a wall across its axis would be at wall_target_mm
+ * as the sweep read it; a ranger reading long (a GP2D12 within its
+ * datasheet spread reads a wall at 35-45 cm some 20 % long) sends it past
+ * that, to within the turning radius of the wall it drove toward (jittered
+ * start seed 60: the east wall read 447 mm off, truly 366; the shift ended
+ * 141 mm from it and the aim's turn swung a rear corner into it). Now, near
+ * that wall, the rangers read it as step 0 does: if it is within the
+ * turning radius + CLEAR_MARGIN_MM ahead or behind, one straight move away
+ * from it (the escape's), then the aim. Once per sweep. */
+void ffr_orient_after_shift(ffr_state_t *st)
+{
+    ffr_home_orient_t *o = &st->orient;
+    float need = ffr_orient_turn_radius_mm(&st->cfg) + CLEAR_MARGIN_MM;
+    float d, nx, ny, len;
+    if (o->after_shift || !ffr_orient_clearance(&st->cfg, &st->ir_geom, st->ir_mm, &d, &nx, &ny) || d >= need ||
+        ffr_absf(nx) < 0.5f) {
+        return;
+    }
+    o->after_shift = 1u;
+    o->reverse = nx > 0.0f;
+    o->leg = 0u;
+    o->target_rad = 0.0f; /* curvature: straight */
+    len = (need - d) / ffr_absf(nx) + 10.0f;
+    o->goal_mm = st->odo.dist_mm + (len < ESCAPE_MAX_MM ? len : ESCAPE_MAX_MM);
+    o->phase = PH_ESCAPE;
+}
+
 /* odometry's frame turned by -rot about its origin: `rot` becomes heading 0 */
 static void reframe(ffr_odometry_t *odo, float rot)
 {
@@ -1105,7 +1134,9 @@ int ffr_orient_step(ffr_state_t *st)
             o->goal_mm = st->odo.dist_mm + 2.0f * ESCAPE_RADIUS_MM * ffr_sinf(o->leg_mm / ESCAPE_RADIUS_MM);
             return 0;
         }
-        o->phase = PH_CLEAR; /* look again (next tick: the rangers from here) */
+        /* look again (next tick: the rangers from here); after the shift's
+         * move for room, the aim */
+        o->phase = o->after_shift ? PH_AIM : PH_CLEAR;
         return 0;
     }
     if (o->phase == PH_PROBE) {
@@ -1209,6 +1240,7 @@ int ffr_orient_step(ffr_state_t *st)
         }
         ffr_stop(st);
         o->phase = PH_AIM;
+        ffr_orient_after_shift(st);
         return 0;
     }
     if (o->phase == PH_AIM) {

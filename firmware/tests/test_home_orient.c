@@ -1114,6 +1114,72 @@ TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
     }
 }
 
+TEST(room_to_turn_again_after_the_shift)
+{
+    /* the shift drove backward toward a wall across its axis, read long in
+     * the sweep, and ended 130 mm from it (the rear face 30 mm off): the
+     * aim's turn in place would swing a rear corner (141 mm) into it. At the
+     * shift's end the rangers read it as step 0 does: one straight move away
+     * (forward) by the missing room, then the aim, whose turn has room. A
+     * shift that ends clear of every wall goes to the aim at once */
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT];
+    float need;
+    rig_t r;
+    int i, clear = 1, aimed = 0;
+    float x_end = 0.0f;
+    rig_walls_t w = {2000.0f, -2000.0f, 130.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    ffr_config_default(&cfg);
+    need = ffr_orient_turn_radius_mm(&cfg) + 20.0f;
+    rig_init(&r, &cfg);
+    r.st.odo.heading_rad = PI_F; /* facing away from the wall at x = 130 */
+    readings(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+    feed(&r, &cfg, ir);
+    rig_tick(&r); /* the readings in */
+    ffr_orient_begin(&r.st);
+    r.st.orient.phase = 3u; /* PH_SHIFT_DRIVE, at its end */
+    r.st.orient.reverse = 1u;
+    r.st.orient.target_rad = r.st.odo.heading_rad;
+    r.st.orient.goal_mm = r.st.odo.dist_mm;
+    CHECK(ffr_orient_step(&r.st) == 0);
+    CHECK(r.st.orient.phase == 8u); /* PH_ESCAPE */
+    CHECK(r.st.orient.reverse == 0u && r.st.orient.target_rad == 0.0f && r.st.orient.after_shift == 1u);
+    CHECK(r.st.orient.goal_mm - r.st.odo.dist_mm >= need - 130.0f - 1.0f);
+    /* the whole firmware from here: the move, then the aim's turn, no corner on the wall */
+    r.st.started = 1;
+    for (i = 0; i < 600 && r.st.state == FFR_ST_ORIENT; ++i) {
+        readings(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+        CHECK(r.st.orient.phase != 7u); /* no fresh look (PH_CLEAR): no sweep again */
+        if (r.st.orient.phase == 8u) {
+            x_end = r.st.odo.x_mm;
+            clear &= body_clear(&w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+        } else {
+            aimed = 1; /* the aim, its turn and odometry's frame turned to the way */
+        }
+    }
+    CHECK(aimed);
+    CHECK(clear);
+    CHECK(130.0f - x_end >= need - 2.0f); /* room to turn: the turning radius + margin */
+    {
+        /* the wall 250 mm off: no move, the aim next */
+        rig_walls_t far = {2000.0f, -2000.0f, 250.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        rig_init(&r, &cfg);
+        r.st.odo.heading_rad = PI_F;
+        readings(&cfg, &far, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+        ffr_orient_begin(&r.st);
+        r.st.orient.phase = 3u;
+        r.st.orient.reverse = 1u;
+        r.st.orient.target_rad = r.st.odo.heading_rad;
+        r.st.orient.goal_mm = r.st.odo.dist_mm;
+        CHECK(ffr_orient_step(&r.st) == 0);
+        CHECK(r.st.orient.phase == ORIENT_PH_AIM && r.st.orient.after_shift == 0u);
+    }
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -1133,4 +1199,5 @@ SUITE(home_orient,
       TEST_REF(the_front_shut_straight_back_before_the_s),
       TEST_REF(a_wall_line_in_the_sweep_brakes_at_once),
       TEST_REF(the_sweep_turns_away_from_a_wall_beside),
-      TEST_REF(a_wall_beside_below_the_span_is_no_end_of_the_s));
+      TEST_REF(a_wall_beside_below_the_span_is_no_end_of_the_s),
+      TEST_REF(room_to_turn_again_after_the_shift));
