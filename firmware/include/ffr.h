@@ -384,7 +384,8 @@ typedef struct {
     uint8_t probe_done;            /* the probe for fold-back made since the robot last looked afresh */
     uint8_t folded;                /* rangers (bit i) the probe saw folded back */
     int8_t sweep_side;             /* the sweep turns: +1 left, -1 right, 0 toward home_wall_side */
-    uint8_t reserved[2];
+    uint8_t after_shift;           /* room to turn looked for after the shift: its move ends in the aim */
+    uint8_t reserved;
     float leg_mm;                  /* the escape's arc legs' length           */
     float near_mm;                 /* nearest wall line seen in the sweep, from where it stands */
     float near_x_mm, near_y_mm;    /* its nearest point (odometry, from the robot) */

@@ -361,6 +361,9 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
                        const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT]);
 void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo);
 int ffr_orient_sweep_side(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT]);
+void ffr_orient_after_shift(ffr_state_t *st);
+int ffr_orient_square_wall(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT], float walls,
+                           float *dist_mm, float *nx, float *ny);
 /* the body's farthest corner from the axle midpoint (it sweeps this circle turning in place) */
 /* the route's first direction k (as ffr_orient_choose, from where the shift
  * (dx, dy) would end) if that shift is at most skip_mm across it and

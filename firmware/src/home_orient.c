@@ -120,7 +120,8 @@ void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
     o->probe_done = 0u;
     o->folded = 0u;
     o->sweep_side = 0;
-    o->reserved[0] = o->reserved[1] = 0u;
+    o->after_shift = 0u;
+    o->reserved = 0u;
     o->leg_mm = 0.0f;
     o->near_mm = 65535.0f;
     o->near_x_mm = 0.0f;
@@ -1020,6 +1021,99 @@ static int escape_free(const ffr_state_t *st)
                need + 0.9f * ((o->goal_mm - st->odo.dist_mm) + o->leg_mm);
 }
 
+/* The nearest wall square to the walls' direction, from the line through
+ * two rangers' measured hits (readings within their span, not at its
+ * bottom): the pairs of ffr_orient_clearance, each line taken only if it
+ * runs within SQUARE_LINE_TOL_DEG of square to `walls` (the walls'
+ * direction in the body frame, mod 90 degrees). Contest walls meet at right
+ * angles: a line at a slant through two hits is two walls' hits across a
+ * corner, nearer than either wall. 1 and its distance and unit direction
+ * (body frame) if one is found. */
+#define SQUARE_LINE_TOL_DEG 10.0f /* chosen: a sweep's walls' direction is within a few degrees */
+int ffr_orient_square_wall(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT], float walls,
+                           float *dist_mm, float *nx, float *ny)
+{
+    static const uint8_t pairs[6][2] = {{FFR_IR_LF, FFR_IR_LR}, {FFR_IR_RF, FFR_IR_RR}, {FFR_IR_CF, FFR_IR_LF},
+                                        {FFR_IR_CF, FFR_IR_RF}, {FFR_IR_LF, FFR_IR_RF}, {FFR_IR_LR, FFR_IR_RR}};
+    const float c4 = ffr_cosf(4.0f * walls), s4 = ffr_sinf(4.0f * walls);
+    const float tol = ffr_cosf(4.0f * SQUARE_LINE_TOL_DEG * FFR_DEG);
+    int k, found = 0;
+    *dist_mm = 65535.0f;
+    *nx = 0.0f;
+    *ny = 0.0f;
+    for (k = 0; k < 6; ++k) {
+        int a = pairs[k][0], b = pairs[k][1];
+        float ex, ey, len, t, fx, fy, d, ca, sa, c2, s2;
+        if (!ffr_ir_valid(cfg, ir_mm[a]) || !ffr_ir_valid(cfg, ir_mm[b]) || ir_mm[a] > CLEAR_RANGE_MM ||
+            ir_mm[b] > CLEAR_RANGE_MM || ir_mm[a] <= cfg->ir_min_mm + 0.5f || ir_mm[b] <= cfg->ir_min_mm + 0.5f) {
+            continue;
+        }
+        ex = g->hit_x_mm[b] - g->hit_x_mm[a];
+        ey = g->hit_y_mm[b] - g->hit_y_mm[a];
+        len = ffr_sqrtf(ex * ex + ey * ey);
+        if (len < CLEAR_LINE_MIN_MM || len > CLEAR_LINE_MAX_MM) {
+            continue;
+        }
+        /* the line's direction times 4 against the walls' times 4: square
+         * (mod 90 degrees) when cos(4 (line - walls)) is near 1 */
+        ca = ex / len;
+        sa = ey / len;
+        c2 = ca * ca - sa * sa;
+        s2 = 2.0f * ca * sa;
+        if ((c2 * c2 - s2 * s2) * c4 + 2.0f * c2 * s2 * s4 < tol) {
+            continue;
+        }
+        t = -(g->hit_x_mm[a] * ex + g->hit_y_mm[a] * ey) / (len * len);
+        if (t < -0.25f || t > 1.25f) {
+            continue;
+        }
+        fx = g->hit_x_mm[a] + t * ex;
+        fy = g->hit_y_mm[a] + t * ey;
+        d = ffr_sqrtf(fx * fx + fy * fy);
+        if (d > 1.0f && d < *dist_mm) {
+            *dist_mm = d;
+            *nx = fx / d;
+            *ny = fy / d;
+            found = 1;
+        }
+    }
+    return found;
+}
+
+/* Room to turn again after the shift, before the aim's turn in place. The
+ * shift drives to where a wall across its axis would be at wall_target_mm
+ * as the sweep read it; a ranger reading long (a GP2D12 within its
+ * datasheet spread reads a wall at 35-45 cm some 20 % long) sends it past
+ * that, to within the turning radius of the wall it drove toward (jittered
+ * start seed 60: the east wall read 447 mm off, truly 366; the shift ended
+ * 141 mm from it and the aim's turn swung a rear corner into it). Now, near
+ * that wall, two rangers measure it (ffr_orient_square_wall: a line square
+ * to the walls the sweep found): if it is within the turning radius +
+ * CLEAR_MARGIN_MM ahead or behind, one straight move away from it (the
+ * escape's), then the aim. Once per sweep. Not step 0's rule (every hit, a
+ * reading at the span's bottom taken as half of it): a realistic robot's
+ * ranger reading short, or two hits across a corner, would move it after
+ * most shifts (robots 4, 30 of the realistic sweep). */
+void ffr_orient_after_shift(ffr_state_t *st)
+{
+    ffr_home_orient_t *o = &st->orient;
+    float need = ffr_orient_turn_radius_mm(&st->cfg) + CLEAR_MARGIN_MM;
+    float d, nx, ny, len;
+    if (o->after_shift ||
+        !ffr_orient_square_wall(&st->cfg, &st->ir_geom, st->ir_mm, o->dir0_rad - st->odo.heading_rad, &d, &nx,
+                                &ny) ||
+        d >= need || ffr_absf(nx) < 0.5f) {
+        return;
+    }
+    o->after_shift = 1u;
+    o->reverse = nx > 0.0f;
+    o->leg = 0u;
+    o->target_rad = 0.0f; /* curvature: straight */
+    len = (need - d) / ffr_absf(nx) + 10.0f;
+    o->goal_mm = st->odo.dist_mm + (len < ESCAPE_MAX_MM ? len : ESCAPE_MAX_MM);
+    o->phase = PH_ESCAPE;
+}
+
 /* odometry's frame turned by -rot about its origin: `rot` becomes heading 0 */
 static void reframe(ffr_odometry_t *odo, float rot)
 {
@@ -1105,7 +1199,9 @@ int ffr_orient_step(ffr_state_t *st)
             o->goal_mm = st->odo.dist_mm + 2.0f * ESCAPE_RADIUS_MM * ffr_sinf(o->leg_mm / ESCAPE_RADIUS_MM);
             return 0;
         }
-        o->phase = PH_CLEAR; /* look again (next tick: the rangers from here) */
+        /* look again (next tick: the rangers from here); after the shift's
+         * move for room, the aim */
+        o->phase = o->after_shift ? PH_AIM : PH_CLEAR;
         return 0;
     }
     if (o->phase == PH_PROBE) {
@@ -1209,6 +1305,7 @@ int ffr_orient_step(ffr_state_t *st)
         }
         ffr_stop(st);
         o->phase = PH_AIM;
+        ffr_orient_after_shift(st);
         return 0;
     }
     if (o->phase == PH_AIM) {

@@ -1114,6 +1114,96 @@ TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
     }
 }
 
+TEST(room_to_turn_again_after_the_shift)
+{
+    /* the shift drove backward toward a wall across its axis, read long in
+     * the sweep, and ended 140 mm from it (the rear face 40 mm off): the
+     * aim's turn in place would swing a rear corner (141 mm) into it. At the
+     * shift's end the rear pair, reading 25 mm long (as a datasheet part
+     * may), measure it as a line square to the walls: one straight move
+     * away (forward) by the missing room, then the aim, whose turn has room.
+     * A shift that ends clear of every wall goes to the aim at once */
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT];
+    float need;
+    rig_t r;
+    int i, clear = 1, aimed = 0;
+    float x_end = 0.0f;
+    rig_walls_t w = {2000.0f, -2000.0f, 140.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 25.0f, 25.0f}};
+    ffr_config_default(&cfg);
+    need = ffr_orient_turn_radius_mm(&cfg) + 20.0f;
+    rig_init(&r, &cfg);
+    r.st.odo.heading_rad = PI_F; /* facing away from the wall at x = 140 */
+    readings(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+    CHECK(ir[FFR_IR_LR] > cfg.ir_min_mm + 0.5f && ir[FFR_IR_RR] > cfg.ir_min_mm + 0.5f); /* in their span */
+    feed(&r, &cfg, ir);
+    rig_tick(&r); /* the readings in */
+    ffr_orient_begin(&r.st);
+    r.st.orient.phase = 3u; /* PH_SHIFT_DRIVE, at its end; the walls along x and y (dir0 0) */
+    r.st.orient.reverse = 1u;
+    r.st.orient.target_rad = r.st.odo.heading_rad;
+    r.st.orient.goal_mm = r.st.odo.dist_mm;
+    CHECK(ffr_orient_step(&r.st) == 0);
+    CHECK(r.st.orient.phase == 8u); /* PH_ESCAPE */
+    CHECK(r.st.orient.reverse == 0u && r.st.orient.target_rad == 0.0f && r.st.orient.after_shift == 1u);
+    /* the whole firmware from here: the move, then the aim's turn, no corner on the wall */
+    r.st.started = 1;
+    for (i = 0; i < 600 && r.st.state == FFR_ST_ORIENT; ++i) {
+        readings(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+        CHECK(r.st.orient.phase != 7u); /* no fresh look (PH_CLEAR): no sweep again */
+        if (r.st.orient.phase == 8u) {
+            x_end = r.st.odo.x_mm;
+            clear &= body_clear(&w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+        } else {
+            aimed = 1; /* the aim, its turn and odometry's frame turned to the way */
+        }
+    }
+    CHECK(aimed);
+    CHECK(clear);
+    CHECK(140.0f - x_end >= ffr_orient_turn_radius_mm(&cfg)); /* room for the turn's corners */
+    CHECK(140.0f - x_end < need + 30.0f);                      /* and no farther than needed */
+    {
+        /* the wall 250 mm off: no move, the aim next */
+        rig_walls_t far = {2000.0f, -2000.0f, 250.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        rig_init(&r, &cfg);
+        r.st.odo.heading_rad = PI_F;
+        readings(&cfg, &far, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+        ffr_orient_begin(&r.st);
+        r.st.orient.phase = 3u;
+        r.st.orient.reverse = 1u;
+        r.st.orient.target_rad = r.st.odo.heading_rad;
+        r.st.orient.goal_mm = r.st.odo.dist_mm;
+        CHECK(ffr_orient_step(&r.st) == 0);
+        CHECK(r.st.orient.phase == ORIENT_PH_AIM && r.st.orient.after_shift == 0u);
+    }
+}
+
+TEST(a_wall_square_to_the_walls_from_two_measured_hits)
+{
+    /* the rear pair on a wall across behind, 160 mm off: a line square to
+     * the walls (walls' direction 0 in the body frame), found at its
+     * distance; the same hits with the walls at 30 degrees: a slanted line,
+     * two walls' hits across a corner, not taken; a reading at the span's
+     * bottom (a bound, not a measurement): no line */
+    ffr_config_t cfg;
+    ffr_ir_geom_t g;
+    float ir[FFR_IR_COUNT], d, nx, ny;
+    rig_walls_t w = {2000.0f, -2000.0f, 160.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    ffr_config_default(&cfg);
+    readings(&cfg, &w, 0.0f, 0.0f, PI_F, ir);
+    CHECK(ffr_orient_square_wall(&cfg, rig_geom(&g, &cfg, ir), ir, 0.0f, &d, &nx, &ny));
+    CHECK_NEAR(d, 160.0f, 2.0f);
+    CHECK(nx < -0.99f);
+    CHECK(!ffr_orient_square_wall(&cfg, rig_geom(&g, &cfg, ir), ir, 30.0f * FFR_DEG, &d, &nx, &ny));
+    CHECK(ffr_orient_square_wall(&cfg, rig_geom(&g, &cfg, ir), ir, 0.5f * PI_F + 5.0f * FFR_DEG, &d, &nx, &ny));
+    ir[FFR_IR_RR] = cfg.ir_min_mm;
+    CHECK(!ffr_orient_square_wall(&cfg, rig_geom(&g, &cfg, ir), ir, 0.0f, &d, &nx, &ny));
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -1133,4 +1223,6 @@ SUITE(home_orient,
       TEST_REF(the_front_shut_straight_back_before_the_s),
       TEST_REF(a_wall_line_in_the_sweep_brakes_at_once),
       TEST_REF(the_sweep_turns_away_from_a_wall_beside),
-      TEST_REF(a_wall_beside_below_the_span_is_no_end_of_the_s));
+      TEST_REF(a_wall_beside_below_the_span_is_no_end_of_the_s),
+      TEST_REF(room_to_turn_again_after_the_shift),
+      TEST_REF(a_wall_square_to_the_walls_from_two_measured_hits));
