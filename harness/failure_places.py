@@ -59,15 +59,28 @@ def _failed_rows(path: Path) -> list[dict[str, str]]:
         return [r for r in reader if r["success"].strip().lower() not in ("true", "1")]
 
 
+def replay_of(command: str) -> tuple[Any, str]:
+    """The scenario and firmware link of a replay line (``ffr run ...``, as a sweep writes it),
+    through the CLI's own parser. ValueError (naming the command) if it is no ``ffr run`` command;
+    the parser's own errors (UsageError, FfrInputError) as ``ffr run`` would give them."""
+    from harness.cli import _scenarios, build_parser
+    from harness.cli_args import firmware_link
+
+    try:
+        argv = shlex.split(command)
+    except ValueError as exc:
+        raise ValueError(f"replay = {command!r}: {exc}") from None
+    if argv[:2] != ["ffr", "run"]:
+        raise ValueError(f"replay = {command!r}: expected an 'ffr run ...' command")
+    args = build_parser().parse_args(argv[1:])
+    if args.room is None and args.candle is None and args.scenario is None:
+        args.room = 1  # as `ffr run` does
+    return _scenarios(args, [args.room])[0], firmware_link(args.link, args.firmware)
+
+
 def scenario_of(row: dict[str, str]) -> Any:
     """The scenario of a sweep row, from its replay command through the CLI's own parser."""
-    from harness.cli import _scenarios, build_parser
-
-    argv = shlex.split(row["replay"])
-    if argv[:2] != ["ffr", "run"]:
-        raise ValueError(f"replay = {row['replay']!r}: expected an 'ffr run ...' command")
-    args = build_parser().parse_args(argv[1:])
-    return _scenarios(args, [args.room])[0]
+    return replay_of(row["replay"])[0]
 
 
 def place_of(row: dict[str, str]) -> Place:

@@ -14,7 +14,6 @@ failure analyses of docs/robustness.md look at a mission tick by tick.
 from __future__ import annotations
 
 import math
-import shlex
 import sys
 from collections.abc import Sequence
 
@@ -65,21 +64,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = ap.parse_args(argv)
         if args.every < 1:
             raise UsageError(f"--every = {args.every}: expected at least 1")
-        try:
-            words = shlex.split(args.command)
-        except ValueError as exc:
-            raise UsageError(f"command = {args.command!r}: {exc}") from None
-        if words[:2] != ["ffr", "run"]:
-            raise UsageError(f"command = {args.command!r}: expected an 'ffr run ...' command")
-        from harness.cli import _scenarios, build_parser
-        from harness.cli_args import firmware_link
+        from harness.failure_places import replay_of
 
-        run_args = build_parser().parse_args(words[1:])
-        if run_args.room is None and run_args.candle is None and run_args.scenario is None:
-            run_args.room = 1  # as `ffr run` does
-        link = firmware_link(run_args.link, run_args.firmware)
-        scenario = _scenarios(run_args, [run_args.room])[0]
-    except (UsageError, FfrInputError) as exc:
+        scenario, link = replay_of(args.command)
+    except (UsageError, FfrInputError, ValueError) as exc:
         print(f"python -m harness.mission_trace: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
     from harness.loop import run_mission

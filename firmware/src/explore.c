@@ -218,9 +218,7 @@ static void follow(ffr_state_t *st)
             /* a wall end seen by the rear ranger alone, its opening's middle
              * behind where the leg began: the door the robot has just come
              * out of (it stood in it); not taken, the side watched afresh */
-            st->open.opened[e->side] = 0;
-            st->open.seen[e->side] = 0;
-            st->open.seen_mm[e->side] = 0.0f;
+            ffr_opening_forget(&st->open, e->side);
             ffr_drive_corridor(st, (uint8_t)(1u - e->side), cfg->cruise_speed_mm_s);
             hold_hallway(st);
             return;
@@ -229,7 +227,6 @@ static void follow(ffr_state_t *st)
             /* on until the origin is in the opening's middle */
             e->goal_mm = st->open.open_at_mm[e->side] + cfg->hallway_half_mm;
             e->phase = EX_WRAP;
-            e->backing = 0;
         } else if (ffr_gap(&st->open, e->side, 0)
                    && st->open.gap_end_mm[e->side] - e->start_mm > 2.0f * cfg->hallway_half_mm) {
             /* an opening open since the leg began (beside the robot when it

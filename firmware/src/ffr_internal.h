@@ -184,6 +184,8 @@ void ffr_openings_reset(ffr_openings_t *op);
 void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_ir_geom_t *g,
                          const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm, int pend_side);
 int ffr_opening(const ffr_openings_t *op, int side);
+/* the side's opening taken back: its wall watched afresh (seen again before an end counts) */
+void ffr_opening_forget(ffr_openings_t *op, int side);
 /* 1 once the n-th (0 or 1: the first) whole opening on a side has been seen
  * this step; where its middle is, as an odometry distance. */
 int ffr_gap(const ffr_openings_t *op, int side, uint8_t n);

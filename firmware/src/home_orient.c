@@ -603,6 +603,31 @@ uint8_t ffr_orient_fold_suspects(const ffr_config_t *cfg, const float ir_mm[FFR_
     return m;
 }
 
+/* pairs of rangers that see one wall: a side's two, the front's three, the rear's two */
+static const uint8_t WALL_PAIRS[6][2] = {{FFR_IR_LF, FFR_IR_LR}, {FFR_IR_RF, FFR_IR_RR}, {FFR_IR_CF, FFR_IR_LF},
+                                         {FFR_IR_CF, FFR_IR_RF}, {FFR_IR_LF, FFR_IR_RF}, {FFR_IR_LR, FFR_IR_RR}};
+
+/* The foot of the perpendicular from the axle midpoint to the line through
+ * two hits (body frame): near them, the wall's nearest point. 0 when the
+ * hits are too close or too far apart for one wall, or the foot lies well
+ * outside them. */
+static int wall_foot(float ax, float ay, float bx, float by, float *fx, float *fy, float *d)
+{
+    float ex = bx - ax, ey = by - ay, len, t;
+    len = ffr_sqrtf(ex * ex + ey * ey);
+    if (len < CLEAR_LINE_MIN_MM || len > CLEAR_LINE_MAX_MM) {
+        return 0;
+    }
+    t = -(ax * ex + ay * ey) / (len * len);
+    if (t < -0.25f || t > 1.25f) {
+        return 0;
+    }
+    *fx = ax + t * ex;
+    *fy = ay + t * ey;
+    *d = ffr_sqrtf(*fx * *fx + *fy * *fy);
+    return 1;
+}
+
 int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT],
                          float *dist_mm, float *nx, float *ny)
 {
@@ -613,9 +638,6 @@ int ffr_orient_clearance_fold(const ffr_config_t *cfg, const ffr_ir_geom_t *g, c
                               uint8_t folded, uint8_t not_both, uint8_t not_any, float *dist_mm, float *nx,
                               float *ny)
 {
-    /* pairs of rangers that see one wall: a side's two, the front's three, the rear's two */
-    static const uint8_t pairs[6][2] = {{FFR_IR_LF, FFR_IR_LR}, {FFR_IR_RF, FFR_IR_RR}, {FFR_IR_CF, FFR_IR_LF},
-                                        {FFR_IR_CF, FFR_IR_RF}, {FFR_IR_LF, FFR_IR_RF}, {FFR_IR_LR, FFR_IR_RR}};
     int ok[FFR_IR_COUNT];
     int i, k, found = 0;
     float best = 65535.0f;
@@ -646,31 +668,14 @@ int ffr_orient_clearance_fold(const ffr_config_t *cfg, const ffr_ir_geom_t *g, c
         }
     }
     for (k = 0; k < 6; ++k) {
-        int a = pairs[k][0], b = pairs[k][1];
-        float ax, ay, ex, ey, len, t, fx, fy, d;
+        int a = WALL_PAIRS[k][0], b = WALL_PAIRS[k][1];
+        float fx, fy, d;
         if (!ok[a] || !ok[b] || ((not_both >> a) & 1 && (not_both >> b) & 1) ||
             ((not_any >> a) & 1 && ir_mm[b] > cfg->ir_min_mm + 0.5f) ||
             ((not_any >> b) & 1 && ir_mm[a] > cfg->ir_min_mm + 0.5f)) {
             continue; /* points that may be folded back are no line (but with one surely near, at its span's bottom) */
         }
-        ax = hx[a];
-        ay = hy[a];
-        ex = hx[b] - ax;
-        ey = hy[b] - ay;
-        len = ffr_sqrtf(ex * ex + ey * ey);
-        if (len < CLEAR_LINE_MIN_MM || len > CLEAR_LINE_MAX_MM) {
-            continue;
-        }
-        /* the foot of the perpendicular from the axle midpoint to the line
-         * through both hits: near them, the wall's nearest point */
-        t = -(ax * ex + ay * ey) / (len * len);
-        if (t < -0.25f || t > 1.25f) {
-            continue;
-        }
-        fx = ax + t * ex;
-        fy = ay + t * ey;
-        d = ffr_sqrtf(fx * fx + fy * fy);
-        if (d > 1.0f && d < best) {
+        if (wall_foot(hx[a], hy[a], hx[b], hy[b], &fx, &fy, &d) && d > 1.0f && d < best) {
             best = d;
             *nx = fx / d;
             *ny = fy / d;
@@ -1023,7 +1028,7 @@ static int escape_free(const ffr_state_t *st)
 
 /* The nearest wall square to the walls' direction, from the line through
  * two rangers' measured hits (readings within their span, not at its
- * bottom): the pairs of ffr_orient_clearance, each line taken only if it
+ * bottom): ffr_orient_clearance's pairs and feet, each line taken only if it
  * runs within SQUARE_LINE_TOL_DEG of square to `walls` (the walls'
  * direction in the body frame, mod 90 degrees). Contest walls meet at right
  * angles: a line at a slant through two hits is two walls' hits across a
@@ -1033,8 +1038,6 @@ static int escape_free(const ffr_state_t *st)
 int ffr_orient_square_wall(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT], float walls,
                            float *dist_mm, float *nx, float *ny)
 {
-    static const uint8_t pairs[6][2] = {{FFR_IR_LF, FFR_IR_LR}, {FFR_IR_RF, FFR_IR_RR}, {FFR_IR_CF, FFR_IR_LF},
-                                        {FFR_IR_CF, FFR_IR_RF}, {FFR_IR_LF, FFR_IR_RF}, {FFR_IR_LR, FFR_IR_RR}};
     const float c4 = ffr_cosf(4.0f * walls), s4 = ffr_sinf(4.0f * walls);
     const float tol = ffr_cosf(4.0f * SQUARE_LINE_TOL_DEG * FFR_DEG);
     int k, found = 0;
@@ -1042,8 +1045,8 @@ int ffr_orient_square_wall(const ffr_config_t *cfg, const ffr_ir_geom_t *g, cons
     *nx = 0.0f;
     *ny = 0.0f;
     for (k = 0; k < 6; ++k) {
-        int a = pairs[k][0], b = pairs[k][1];
-        float ex, ey, len, t, fx, fy, d, ca, sa, c2, s2;
+        int a = WALL_PAIRS[k][0], b = WALL_PAIRS[k][1];
+        float ex, ey, len, fx, fy, d, ca, sa, c2, s2;
         if (!ffr_ir_valid(cfg, ir_mm[a]) || !ffr_ir_valid(cfg, ir_mm[b]) || ir_mm[a] > CLEAR_RANGE_MM ||
             ir_mm[b] > CLEAR_RANGE_MM || ir_mm[a] <= cfg->ir_min_mm + 0.5f || ir_mm[b] <= cfg->ir_min_mm + 0.5f) {
             continue;
@@ -1063,14 +1066,8 @@ int ffr_orient_square_wall(const ffr_config_t *cfg, const ffr_ir_geom_t *g, cons
         if ((c2 * c2 - s2 * s2) * c4 + 2.0f * c2 * s2 * s4 < tol) {
             continue;
         }
-        t = -(g->hit_x_mm[a] * ex + g->hit_y_mm[a] * ey) / (len * len);
-        if (t < -0.25f || t > 1.25f) {
-            continue;
-        }
-        fx = g->hit_x_mm[a] + t * ex;
-        fy = g->hit_y_mm[a] + t * ey;
-        d = ffr_sqrtf(fx * fx + fy * fy);
-        if (d > 1.0f && d < *dist_mm) {
+        if (wall_foot(g->hit_x_mm[a], g->hit_y_mm[a], g->hit_x_mm[b], g->hit_y_mm[b], &fx, &fy, &d) && d > 1.0f &&
+            d < *dist_mm) {
             *dist_mm = d;
             *nx = fx / d;
             *ny = fy / d;

@@ -226,6 +226,13 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
 
 int ffr_opening(const ffr_openings_t *op, int side) { return op->opened[side] != 0; }
 
+void ffr_opening_forget(ffr_openings_t *op, int side)
+{
+    op->opened[side] = 0;
+    op->seen[side] = 0;
+    op->seen_mm[side] = 0.0f;
+}
+
 void ffr_gaps_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_ir_geom_t *g,
                      const float ir_mm[FFR_IR_COUNT], float dist_mm, float step_mm, float yaw_rad)
 {

@@ -133,6 +133,13 @@ static int drive_to_goal(ffr_state_t *st)
 /* a wall further off than this is not the corridor's far wall (a corner) */
 #define SQUARE_MAX_DEG 30.0f
 
+/* a heading error less the part kept (keep_rad toward zero): the fixes
+ * below take all of a large error but a margin for the measurement's own */
+static float trimmed(float off, float keep_rad)
+{
+    return off > 0.0f ? off - keep_rad : off + keep_rad;
+}
+
 int ffr_square_on_wall_ahead(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -162,10 +169,8 @@ int ffr_square_on_wall_ahead(ffr_state_t *st)
     }
     held = ffr_wrap_pi(st->odo.heading_rad - st->route.heading_ref_rad);
     off = wall - held; /* what odometry's heading is short of the truth */
-    if (off > SQUARE_MIN_DEG * FFR_DEG) {
-        st->odo.heading_rad += off - SQUARE_KEEP_DEG * FFR_DEG;
-    } else if (off < -SQUARE_MIN_DEG * FFR_DEG) {
-        st->odo.heading_rad += off + SQUARE_KEEP_DEG * FFR_DEG;
+    if (ffr_absf(off) > SQUARE_MIN_DEG * FFR_DEG) {
+        st->odo.heading_rad += trimmed(off, SQUARE_KEEP_DEG * FFR_DEG);
     }
     return 1;
 }
@@ -208,7 +213,7 @@ int ffr_square_on_wall_beside(ffr_state_t *st)
     }
     /* the wall's direction is e off the held heading in odometry's frame:
      * odometry's heading is e too far the same way */
-    st->odo.heading_rad -= e > 0.0f ? e - EXIT_KEEP_DEG * FFR_DEG : e + EXIT_KEEP_DEG * FFR_DEG;
+    st->odo.heading_rad -= trimmed(e, EXIT_KEEP_DEG * FFR_DEG);
     return 1;
 }
 

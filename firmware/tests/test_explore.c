@@ -252,6 +252,21 @@ TEST(the_follow_holds_the_hallway_heading_within_ten_degrees)
     CHECK(follow_yaw_with_heading_off(-12.0f) > 0.0f);
 }
 
+/* following in a hallway, the leg begun 20 mm back, the right wall ended
+ * `before_mm` before that start; one tick. The leg's start. */
+static float right_wall_ended_before_the_leg(rig_t *r, const ffr_config_t *cfg, float before_mm)
+{
+    float start;
+    started_in_a_hallway(r, cfg);
+    start = r->st.odo.dist_mm - 20.0f;
+    r->st.explore.start_mm = start;
+    r->st.open.opened[FFR_SIDE_RIGHT] = 1;
+    r->st.open.seen[FFR_SIDE_RIGHT] = 1;
+    r->st.open.open_at_mm[FFR_SIDE_RIGHT] = start - before_mm;
+    rig_tick(r);
+    return start;
+}
+
 TEST(a_wall_end_behind_where_the_leg_began_is_the_door_just_left)
 {
     ffr_config_t cfg;
@@ -259,27 +274,15 @@ TEST(a_wall_end_behind_where_the_leg_began_is_the_door_just_left)
     float start;
     ffr_config_default(&cfg);
     cfg.start_area = FFR_START_HALLWAY;
-    started_in_a_hallway(&r, &cfg);
     /* the rear ranger's wall ended 300 mm before the leg began: the
      * opening's middle is 70 mm behind that start (the robot stood in it) */
-    start = r.st.odo.dist_mm - 20.0f;
-    r.st.explore.start_mm = start;
-    r.st.open.opened[FFR_SIDE_RIGHT] = 1;
-    r.st.open.seen[FFR_SIDE_RIGHT] = 1;
-    r.st.open.open_at_mm[FFR_SIDE_RIGHT] = start - 300.0f;
-    rig_tick(&r);
+    (void)right_wall_ended_before_the_leg(&r, &cfg, 300.0f);
     CHECK(r.out.step == PH_FOLLOW);
     CHECK(r.st.open.opened[FFR_SIDE_RIGHT] == 0); /* watched afresh */
     CHECK(r.st.cmd_v_mm_s > 0.0f);
 
     /* ended 200 mm before: its middle 30 mm past the start, taken */
-    started_in_a_hallway(&r, &cfg);
-    start = r.st.odo.dist_mm - 20.0f;
-    r.st.explore.start_mm = start;
-    r.st.open.opened[FFR_SIDE_RIGHT] = 1;
-    r.st.open.seen[FFR_SIDE_RIGHT] = 1;
-    r.st.open.open_at_mm[FFR_SIDE_RIGHT] = start - 200.0f;
-    rig_tick(&r);
+    start = right_wall_ended_before_the_leg(&r, &cfg, 200.0f);
     CHECK(r.out.step == PH_WRAP);
     CHECK_NEAR(r.st.explore.goal_mm, start + 30.0f, 1e-3);
 }

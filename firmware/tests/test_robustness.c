@@ -298,6 +298,27 @@ TEST(a_flame_not_out_from_where_its_strength_said_is_approached_closer)
  * most, none of them a fan attempt. Over the flame's strengths and dwells
  * ended with the flame lit, put out (its wick's glow falling), or going out
  * during a step. */
+/* a flame of `peak` found and approached until its strength stopped the
+ * robot, a wall 120 mm off its left front corner */
+static void stopped_beside_a_wall(rig_t *r, ffr_config_t *cfg, float peak)
+{
+    enter_and_scan(r, cfg, 0.0f, peak);
+    r->in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(cfg, 120.0f);
+    (void)run_while(r, FFR_ST_APPROACH, 50);
+}
+
+/* the flame reading falls by `rate` a tick (down to 20 counts) while the
+ * firmware stays in `state`, at most `ticks` ticks */
+static void fade(rig_t *r, float *glow, float rate, int ticks, uint8_t state)
+{
+    int i;
+    for (i = 0; i < ticks && r->out.state == state; ++i) {
+        *glow *= rate;
+        r->in.flame[0] = r->in.flame[1] = (uint16_t)(*glow > 20.0f ? *glow : 20.0f);
+        rig_tick(r);
+    }
+}
+
 TEST(a_flame_not_out_after_the_dwell_is_stepped_toward)
 {
     static const uint16_t peaks[] = {1200, 1600, 2000, 2400};
@@ -309,9 +330,7 @@ TEST(a_flame_not_out_after_the_dwell_is_stepped_toward)
         float d0, v_max = 0.0f;
         int fan_off = 0;
         uint32_t t0;
-        enter_and_scan(&r, &cfg, 0.0f, (float)peaks[k]);
-        r.in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(&cfg, 120.0f);
-        (void)run_while(&r, FFR_ST_APPROACH, 50);
+        stopped_beside_a_wall(&r, &cfg, (float)peaks[k]);
         CHECK(r.out.state == FFR_ST_EXTINGUISH);
         for (s = 0; s < 5; ++s) {
             t0 = r.st.t_ms;
@@ -342,18 +361,11 @@ TEST(a_flame_not_out_after_the_dwell_is_stepped_toward)
          * no step; the fans' phase confirms it out and verifies */
         ffr_config_t cfg;
         rig_t r;
-        int i;
         float glow = (float)peaks[k];
-        enter_and_scan(&r, &cfg, 0.0f, (float)peaks[k]);
-        r.in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(&cfg, 120.0f);
-        (void)run_while(&r, FFR_ST_APPROACH, 50);
+        stopped_beside_a_wall(&r, &cfg, (float)peaks[k]);
         CHECK(r.out.state == FFR_ST_EXTINGUISH);
         (void)run_while(&r, FFR_ST_EXTINGUISH, 300);
-        for (i = 0; i < 600 && r.out.state == FFR_ST_EXTINGUISH; ++i) {
-            glow *= 0.98f; /* 10 ms of a 0.5 s time constant */
-            r.in.flame[0] = r.in.flame[1] = (uint16_t)(glow > 20.0f ? glow : 20.0f);
-            rig_tick(&r);
-        }
+        fade(&r, &glow, 0.98f, 600, FFR_ST_EXTINGUISH); /* 10 ms of a 0.5 s time constant */
         CHECK(r.out.state == FFR_ST_VERIFY);
     }
     for (k = 0; k < 4; ++k) {
@@ -361,24 +373,13 @@ TEST(a_flame_not_out_after_the_dwell_is_stepped_toward)
          * confirms it out (no backing out as from a far flame) */
         ffr_config_t cfg;
         rig_t r;
-        int i;
         float glow = (float)peaks[k];
-        enter_and_scan(&r, &cfg, 0.0f, (float)peaks[k]);
-        r.in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(&cfg, 120.0f);
-        (void)run_while(&r, FFR_ST_APPROACH, 50);
+        stopped_beside_a_wall(&r, &cfg, (float)peaks[k]);
         (void)run_while(&r, FFR_ST_EXTINGUISH, (int)(cfg.fan_timeout_ms / 10u) + 10);
         CHECK(r.out.state == FFR_ST_APPROACH);
-        for (i = 0; i < 400 && r.out.state == FFR_ST_APPROACH; ++i) {
-            glow *= 0.95f; /* below FLAME_NEAR at the step's end: not a far flame */
-            r.in.flame[0] = r.in.flame[1] = (uint16_t)(glow > 20.0f ? glow : 20.0f);
-            rig_tick(&r);
-        }
+        fade(&r, &glow, 0.95f, 400, FFR_ST_APPROACH); /* below FLAME_NEAR at the step's end: not a far flame */
         CHECK(r.out.state == FFR_ST_EXTINGUISH && r.out.fan == 1);
-        for (i = 0; i < 300 && r.out.state == FFR_ST_EXTINGUISH; ++i) {
-            glow *= 0.98f;
-            r.in.flame[0] = r.in.flame[1] = (uint16_t)(glow > 20.0f ? glow : 20.0f);
-            rig_tick(&r);
-        }
+        fade(&r, &glow, 0.98f, 300, FFR_ST_EXTINGUISH);
         CHECK(r.out.state == FFR_ST_VERIFY);
     }
 }
