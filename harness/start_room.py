@@ -1,0 +1,195 @@
+"""How much room each start of a sweep left the robot, and how the starts fared by it.
+
+    python -m harness.start_room SWEEP.csv [--bins 10,20,40,80] [--rows FILE.tsv]
+
+Reads an ``ffr sweep --out`` CSV of a random or hallway start (``--start random|hallway``, any
+arena, jitter or robot) and, for each start pose, measures in the mission's own arena (jittered
+as the mission's was, from its replay command):
+
+- **gap**: the body's footprint to the nearest wall (mm), the plant's own clearance;
+- **angle**: between the body's axis and that wall (degrees, 0 = parallel, 90 = square on);
+- **axle**: the axle midpoint to the nearest wall (mm). Below the turning radius (the farthest
+  body corner from the axle) the robot cannot turn in place before it has moved away.
+
+It prints the starts and missions per gap band with their success rate, the same for the starts
+that must move before they can turn and for those that can turn in place, and every failed start
+(seed, gap, angle, axle, missions failed of run). ``--rows`` writes one tab-separated line per
+start. Geometry only: no mission is run again, so it takes seconds (docs/robustness.md uses it to
+say which starts are left).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+import sys
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from sim_plant.arena import Arena
+
+NEEDED = ("seed", "success", "replay")
+DEFAULT_BINS = (10.0, 20.0, 40.0, 80.0)  # mm: band edges of the gap (chosen: the fold-back span and twice it)
+
+
+@dataclass(frozen=True)
+class Start:
+    """One start pose of the sweep and how its missions went."""
+
+    seed: int
+    pose: tuple[float, float, float]  # x, y (m), heading (deg)
+    gap_mm: float
+    angle_deg: float
+    axle_mm: float
+    turn_radius_mm: float
+    missions: int
+    failed: int
+
+    @property
+    def must_move(self) -> bool:
+        """The axle is nearer a wall than the body's farthest corner: no turn in place from here."""
+        return self.axle_mm < self.turn_radius_mm
+
+
+def _nearest_wall(poly: np.ndarray, arena: Arena) -> tuple[float, int]:
+    from sim_plant.geometry import clearance
+
+    best, k = math.inf, -1
+    for i in range(len(arena.wall_polys)):
+        d = float(clearance(poly, arena.wall_polys[i:i + 1], arena.wall_bbox[i:i + 1], 10.0))
+        if d < best:
+            best, k = d, i
+    return best, k
+
+
+def measure(replay: str) -> tuple[tuple[float, float, float], float, float, float, float]:
+    """(pose, gap mm, angle deg, axle mm, turning radius mm) of a replay line's start."""
+    from harness.failure_places import replay_of
+    from harness.start_pose import footprint
+
+    scn = replay_of(replay)[0]
+    x, y, th = scn.start
+    arena, robot = scn.arena, scn.robot
+    gap, k = _nearest_wall(footprint(robot, x, y, th), arena)
+    w = arena.walls[k]
+    wall_dir = math.atan2(w.b[1] - w.a[1], w.b[0] - w.a[0])
+    rel = abs(math.degrees(th - wall_dir)) % 180.0
+    angle = min(rel, 180.0 - rel)
+    f, r, left, right = robot.footprint()
+    turn = max(math.hypot(a, b) for a in (f, r) for b in (left, right))
+    return (x, y, math.degrees(th) % 360.0), gap * 1000.0, angle, arena.wall_distance(x, y) * 1000.0, turn * 1000.0
+
+
+def _start_key(replay: str) -> str:
+    """The replay line without its candle and room: every mission of one start seed shares it."""
+    s = re.sub(r"--candle \S+", "", replay)
+    return " ".join(re.sub(r"--room \S+", "", s).split())
+
+
+def starts_of(path: Path) -> list[Start]:
+    with path.open(newline="") as fh:
+        reader = csv.DictReader(fh)
+        missing = [c for c in NEEDED if c not in (reader.fieldnames or [])]
+        if missing:
+            raise ValueError(f"{path}: column {missing[0]!r} missing (an ffr sweep --out CSV is needed)")
+        rows = list(reader)
+    groups: dict[str, list[dict[str, str]]] = {}
+    for r in rows:
+        if "--start" not in r["replay"]:
+            raise ValueError(f"{path}: replay = {r['replay']!r}: not a random or hallway start")
+        groups.setdefault(_start_key(r["replay"]), []).append(r)
+    out = []
+    for rs in groups.values():
+        pose, gap, angle, axle, turn = measure(rs[0]["replay"])
+        failed = sum(r["success"].strip().lower() not in ("true", "1") for r in rs)
+        out.append(Start(int(rs[0]["seed"]), pose, gap, angle, axle, turn, len(rs), failed))
+    return sorted(out, key=lambda s: s.seed)
+
+
+def _band_lines(starts: list[Start], bins: Sequence[float]) -> list[str]:
+    edges = [0.0, *bins, math.inf]
+    lines = [f"{'gap (mm)':>10s} {'starts':>7s} {'missions':>9s} {'success':>8s} {'failed starts':>14s}"]
+    for lo, hi in zip(edges[:-1], edges[1:], strict=True):
+        sel = [s for s in starts if lo <= s.gap_mm < hi]
+        n = sum(s.missions for s in sel)
+        ok = n - sum(s.failed for s in sel)
+        band = f"{lo:.0f}-{hi:.0f}" if hi < math.inf else f"{lo:.0f}+"
+        rate = f"{100.0 * ok / n:7.1f}%" if n else "      -"
+        lines.append(f"{band:>10s} {len(sel):7d} {n:9d} {rate:>8s} {sum(s.failed > 0 for s in sel):14d}")
+    return lines
+
+
+def report(starts: list[Start], bins: Sequence[float]) -> str:
+    n = sum(s.missions for s in starts)
+    ok = n - sum(s.failed for s in starts)
+    turn = starts[0].turn_radius_mm if starts else 0.0
+    lines = [f"{len(starts)} start poses, {n} missions, {ok} succeeded"
+             + (f" ({100.0 * ok / n:.1f} %)" if n else ""), *_band_lines(starts, bins)]
+    for must, what in ((True, f"must move before turning (axle nearer a wall than the turning radius, "
+                               f"{turn:.0f} mm)"), (False, "can turn in place")):
+        sel = [s for s in starts if s.must_move == must]
+        mn = sum(s.missions for s in sel)
+        mok = mn - sum(s.failed for s in sel)
+        lines.append(f"{what}: {len(sel)} starts, {mn} missions"
+                     + (f", {mok} succeeded ({100.0 * mok / mn:.1f} %)" if mn else ""))
+    bad = [s for s in starts if s.failed]
+    if bad:
+        lines.append("failed starts: seed  x, y (m), heading (deg)  gap (mm)  angle (deg)  axle (mm)  failed")
+        for s in bad:
+            lines.append(f"  {s.seed:5d}  {s.pose[0]:.3f}, {s.pose[1]:.3f}, {s.pose[2]:5.1f}  {s.gap_mm:6.1f}"
+                         f"  {s.angle_deg:5.1f}  {s.axle_mm:6.1f}  {s.failed}/{s.missions}")
+    return "\n".join(lines)
+
+
+def _bins(text: str) -> tuple[float, ...]:
+    try:
+        vals = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        raise ValueError(f"--bins = {text!r}: expected increasing numbers of mm, e.g. 10,20,40,80") from None
+    if not vals or any(v <= 0 for v in vals) or any(b <= a for a, b in zip(vals, vals[1:], strict=False)):
+        raise ValueError(f"--bins = {text!r}: expected increasing numbers of mm above 0, e.g. 10,20,40,80")
+    return vals
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    from harness.cli_args import EXIT_INPUT, UsageError, _Parser
+    from sim_plant.errors import FfrInputError
+
+    ap = _Parser(prog="python -m harness.start_room", description=__doc__.split("\n")[0])
+    ap.add_argument("csv", type=Path, help="an ffr sweep --out CSV of --start random or hallway")
+    ap.add_argument("--bins", default=",".join(f"{b:.0f}" for b in DEFAULT_BINS),
+                    help="the gap bands' edges, mm (default 10,20,40,80)")
+    ap.add_argument("--rows", type=Path, help="also one tab-separated line per start to this file")
+    try:
+        args = ap.parse_args(argv)
+        bins = _bins(args.bins)
+        starts = starts_of(args.csv)
+    except OSError as exc:
+        print(f"python -m harness.start_room: error: {args.csv}: {exc.strerror}", file=sys.stderr)
+        return EXIT_INPUT
+    except (UsageError, FfrInputError, ValueError) as exc:
+        print(f"python -m harness.start_room: error: {exc}", file=sys.stderr)
+        return EXIT_INPUT
+    text = report(starts, bins)
+    if args.rows:
+        lines = ["\t".join(("seed", "x", "y", "heading_deg", "gap_mm", "angle_deg", "axle_mm", "missions",
+                            "failed"))]
+        lines += ["\t".join((str(s.seed), f"{s.pose[0]:.4f}", f"{s.pose[1]:.4f}", f"{s.pose[2]:.2f}",
+                             f"{s.gap_mm:.1f}", f"{s.angle_deg:.1f}", f"{s.axle_mm:.1f}", str(s.missions),
+                             str(s.failed))) for s in starts]
+        try:
+            args.rows.write_text("\n".join(lines) + "\n")
+        except OSError as exc:
+            print(f"python -m harness.start_room: error: --rows = {str(args.rows)!r}: {exc.strerror}",
+                  file=sys.stderr)
+            return EXIT_INPUT
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,97 @@
+"""`python -m harness.start_room`: how much room each start of a sweep left, and how they fared."""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import pytest
+
+from harness import start_room
+from harness.failure_places import replay_of
+from harness.start_pose import footprint
+
+# start seed 105 of `--start random`: the front-right corner 1.6 mm off the south hallway wall
+NEAR = "ffr run --candle 1.83,1.53 --seed 105 --start random"
+
+
+def _csv(path: Path, rows: list[tuple[int, bool, str]]) -> Path:
+    with path.open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["id", "room", "seed", "success", "replay"])
+        for k, (seed, ok, replay) in enumerate(rows):
+            w.writerow([k, 1, seed, ok, replay])
+    return path
+
+
+def test_the_gap_is_the_body_to_the_nearest_wall_as_drawn() -> None:
+    scn = replay_of(NEAR)[0]
+    x, y, th = scn.start
+    wall = next(w for w in scn.arena.walls if w.name == "br_top")  # along y = 0.93, 2 cm thick
+    face = wall.a[1] + wall.t / 2.0
+    by_hand = (min(py for _, py in footprint(scn.robot, x, y, th)) - face) * 1000.0
+    pose, gap, angle, axle, turn = start_room.measure(NEAR)
+    assert gap == pytest.approx(by_hand, abs=0.01)
+    assert 0.0 < gap < 5.0
+    assert angle == pytest.approx(abs(math.degrees(math.atan2(math.sin(th), math.cos(th)))), abs=0.01)
+    assert axle == pytest.approx((y - face) * 1000.0, abs=0.01)  # the axle's nearest wall is the same
+    assert turn == pytest.approx(math.hypot(120.0, 100.0))  # the default body: 12 cm front, 20 cm wide
+    assert pose[:2] == pytest.approx((x, y))
+
+
+def test_missions_of_one_start_are_one_start_and_bands_count_them(tmp_path: Path) -> None:
+    far = "ffr run --candle 1.83,1.53 --seed 3 --start random"
+    rows = [(105, False, NEAR), (105, True, NEAR.replace("1.83,1.53", "0.62,2.32")),
+            (3, True, far), (3, True, far.replace("1.83,1.53", "0.62,2.32"))]
+    starts = start_room.starts_of(_csv(tmp_path / "s.csv", rows))
+    assert [(s.seed, s.missions, s.failed) for s in starts] == [(3, 2, 0), (105, 2, 1)]
+    near = starts[1]
+    assert near.must_move  # 133 mm from the wall, the corners reach 156
+    text = start_room.report(starts, (10.0, 1000.0))
+    lines = text.splitlines()
+    assert lines[0] == "2 start poses, 4 missions, 3 succeeded (75.0 %)"
+    assert lines[2].split() == ["0-10", "1", "2", "50.0%", "1"]
+    assert lines[3].split()[1:] == ["1", "2", "100.0%", "0"]
+    assert "must move before turning" in lines[5] and "1 starts, 2 missions, 1 succeeded (50.0 %)" in lines[5]
+    assert lines[6] == "can turn in place: 1 starts, 2 missions, 2 succeeded (100.0 %)"
+    assert lines[-1].split()[0] == "105" and lines[-1].split()[-1] == "1/2"
+
+
+def test_the_command_prints_the_table_and_writes_rows(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    src = _csv(tmp_path / "s.csv", [(105, False, NEAR)])
+    out = tmp_path / "rows.tsv"
+    assert start_room.main([str(src), "--rows", str(out)]) == 0
+    assert capsys.readouterr().out.startswith("1 start poses, 1 missions, 0 succeeded (0.0 %)")
+    lines = out.read_text().splitlines()
+    assert lines[0].split("\t")[:5] == ["seed", "x", "y", "heading_deg", "gap_mm"]
+    assert lines[1].split("\t")[0] == "105" and len(lines) == 2
+
+
+@pytest.mark.parametrize("content, argv, names", [
+    ("seed,success\n1,True\n", [], ["replay"]),
+    ("seed,success,replay\n1,True,ffr run --room 1\n", [], ["ffr run --room 1", "not a random"]),
+    ("seed,success,replay\n1,True,ffr sweep\n", [], ["ffr sweep"]),
+    (None, [], ["no/such.csv"]),
+    ("seed,success,replay\n", ["--bins", "20,10"], ["--bins", "20,10"]),
+    ("seed,success,replay\n", ["--bins", "x"], ["--bins", "'x'"]),
+    ("seed,success,replay\n", ["--what"], ["--what"]),
+])
+def test_bad_input_gets_one_line_and_exit_2(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                           content: str | None, argv: list[str], names: list[str]) -> None:
+    path = tmp_path / "s.csv"
+    if content is None:
+        path = tmp_path / "no/such.csv"
+    else:
+        path.write_text(content)
+    assert start_room.main([str(path), *argv]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and all(n in err for n in names), err
+
+
+def test_no_rows_file_is_left_half_written_on_a_bad_csv(tmp_path: Path) -> None:
+    path = tmp_path / "s.csv"
+    path.write_text("seed,success\n")
+    out = tmp_path / "rows.tsv"
+    assert start_room.main([str(path), "--rows", str(out)]) == 2
+    assert not out.exists()
