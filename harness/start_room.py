@@ -4,7 +4,9 @@
 
 Reads an ``ffr sweep --out`` CSV of a random or hallway start (``--start random|hallway``, any
 arena, jitter or robot) and, for each start pose, measures in the mission's own arena (jittered
-as the mission's was, from its replay command):
+as the mission's was, from its replay command; a start is one seed's pose in one arena: with
+jitter, one seed's missions may start in several, as the arena is drawn again while a candle is
+not legal in it):
 
 - **gap**: the body's footprint to the nearest wall (mm), the plant's own clearance;
 - **angle**: between the body's axis and that wall (degrees, 0 = parallel, 90 = square on);
@@ -14,8 +16,9 @@ as the mission's was, from its replay command):
 It prints the starts and missions per gap band with their success rate, the same for the starts
 that must move before they can turn and for those that can turn in place, and every failed start
 (seed, gap, angle, axle, missions failed of run). ``--rows`` writes one tab-separated line per
-start. Geometry only: no mission is run again, so it takes seconds (docs/robustness.md uses it to
-say which starts are left).
+start. Geometry only: no mission is run again (seconds for thousands of rows; about a minute for
+2,000 rows of a jittered sweep, whose arenas are drawn again row by row). docs/robustness.md uses
+it to say which starts are left.
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -84,30 +88,57 @@ def measure(replay: str) -> tuple[tuple[float, float, float], float, float, floa
     return (x, y, math.degrees(th) % 360.0), gap * 1000.0, angle, arena.wall_distance(x, y) * 1000.0, turn * 1000.0
 
 
-def _start_key(replay: str) -> str:
-    """The replay line without its candle and room: every mission of one start seed shares it."""
-    s = re.sub(r"--candle \S+", "", replay)
-    return " ".join(re.sub(r"--room \S+", "", s).split())
+def _start_key(replay: str) -> str | None:
+    """The replay line without its candle: every mission of one start seed shares it, unless the
+    arena is jittered (None): a jittered arena is drawn again while the candle is not legal in it
+    (sim_plant/arena_jitter.py), so one seed's missions can start in different arenas and poses."""
+    if "--arena-jitter" in replay:
+        return None
+    return " ".join(re.sub(r"--candle \S+", "", replay).split())
+
+
+def _row_error(path: Path, n: int, row: dict[str, str], exc: Exception) -> ValueError:
+    return ValueError(f"{path}: row {n}: replay = {row.get('replay')!r}: {exc}")
 
 
 def starts_of(path: Path) -> list[Start]:
-    with path.open(newline="") as fh:
-        reader = csv.DictReader(fh)
-        missing = [c for c in NEEDED if c not in (reader.fieldnames or [])]
-        if missing:
-            raise ValueError(f"{path}: column {missing[0]!r} missing (an ffr sweep --out CSV is needed)")
-        rows = list(reader)
-    groups: dict[str, list[dict[str, str]]] = {}
-    for r in rows:
-        if "--start" not in r["replay"]:
-            raise ValueError(f"{path}: replay = {r['replay']!r}: not a random or hallway start")
-        groups.setdefault(_start_key(r["replay"]), []).append(r)
-    out = []
-    for rs in groups.values():
-        pose, gap, angle, axle, turn = measure(rs[0]["replay"])
-        failed = sum(r["success"].strip().lower() not in ("true", "1") for r in rs)
-        out.append(Start(int(rs[0]["seed"]), pose, gap, angle, axle, turn, len(rs), failed))
-    return sorted(out, key=lambda s: s.seed)
+    """The sweep's starts: one per seed and pose (and arena), its missions counted."""
+    from harness.cli_args import UsageError
+    from sim_plant.errors import FfrInputError
+
+    try:
+        with path.open(newline="", encoding="utf-8") as fh:
+            reader = csv.DictReader(fh)
+            missing = [c for c in NEEDED if c not in (reader.fieldnames or [])]
+            if missing:
+                raise ValueError(f"{path}: column {missing[0]!r} missing (an ffr sweep --out CSV is needed)")
+            rows = list(reader)
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not a CSV text file ({exc.reason} at byte {exc.start})") from None
+    cache: dict[str, tuple[tuple[float, float, float], float, float, float, float]] = {}
+    groups: dict[tuple[int, tuple[float, ...]], list[Any]] = {}
+    for n, r in enumerate(rows, start=2):  # row 1 is the header
+        try:
+            if any(r.get(c) is None for c in NEEDED) or None in r:
+                raise ValueError("expected as many cells as the header names")
+            if "--start" not in r["replay"]:
+                raise ValueError("not a random or hallway start")
+            seed = int(r["seed"])
+            key = _start_key(r["replay"])
+            m = cache.get(key) if key is not None else None
+            if m is None:
+                m = measure(r["replay"])
+                if key is not None:
+                    cache[key] = m
+        except (ValueError, UsageError, FfrInputError) as exc:
+            raise _row_error(path, n, r, exc) from None
+        pose, gap, angle, axle, turn = m
+        g = groups.setdefault((seed, tuple(round(v, 6) for v in (*pose, gap))), [seed, m, 0, 0])
+        g[2] += 1
+        g[3] += r["success"].strip().lower() not in ("true", "1")
+    out = [Start(seed, pose, gap, angle, axle, turn, missions, failed)
+           for seed, (pose, gap, angle, axle, turn), missions, failed in groups.values()]
+    return sorted(out, key=lambda s: (s.seed, s.pose))
 
 
 def _band_lines(starts: list[Start], bins: Sequence[float]) -> list[str]:
@@ -150,12 +181,14 @@ def _bins(text: str) -> tuple[float, ...]:
         vals = tuple(float(v) for v in text.split(","))
     except ValueError:
         raise ValueError(f"--bins = {text!r}: expected increasing numbers of mm, e.g. 10,20,40,80") from None
-    if not vals or any(v <= 0 for v in vals) or any(b <= a for a, b in zip(vals, vals[1:], strict=False)):
+    if (not vals or any(not math.isfinite(v) or v <= 0 for v in vals)
+            or any(b <= a for a, b in zip(vals, vals[1:], strict=False))):
         raise ValueError(f"--bins = {text!r}: expected increasing numbers of mm above 0, e.g. 10,20,40,80")
     return vals
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    from harness.atomic import check_target, write_text_atomic
     from harness.cli_args import EXIT_INPUT, UsageError, _Parser
     from sim_plant.errors import FfrInputError
 
@@ -167,6 +200,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         args = ap.parse_args(argv)
         bins = _bins(args.bins)
+        if args.rows is not None:
+            why = check_target(args.rows)
+            if why is None and args.rows.resolve() == args.csv.resolve():
+                why = "it is the sweep's own CSV"
+            if why:
+                raise UsageError(f"--rows = {str(args.rows)!r}: {why}")
         starts = starts_of(args.csv)
     except OSError as exc:
         print(f"python -m harness.start_room: error: {args.csv}: {exc.strerror}", file=sys.stderr)
@@ -182,7 +221,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                              f"{s.gap_mm:.1f}", f"{s.angle_deg:.1f}", f"{s.axle_mm:.1f}", str(s.missions),
                              str(s.failed))) for s in starts]
         try:
-            args.rows.write_text("\n".join(lines) + "\n")
+            write_text_atomic(args.rows, "\n".join(lines) + "\n")
         except OSError as exc:
             print(f"python -m harness.start_room: error: --rows = {str(args.rows)!r}: {exc.strerror}",
                   file=sys.stderr)

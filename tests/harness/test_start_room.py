@@ -68,8 +68,33 @@ def test_the_command_prints_the_table_and_writes_rows(tmp_path: Path, capsys: py
     assert lines[1].split("\t")[0] == "105" and len(lines) == 2
 
 
+def test_a_jittered_seed_is_one_start_per_arena_it_drew(tmp_path: Path) -> None:
+    """A jittered arena is drawn again while the candle is not legal in it, so one seed's missions
+    may start in different arenas and poses (seed 51 of the +-2.5 cm row: the third candle's arena
+    is another, and its start 11 mm away): each is measured, and counted as its own start."""
+    base = "ffr run --candle {} --seed 51 --noise datasheet --start random --arena-jitter 0.025"
+    candles = ["1.8373310791430497,1.4374644991588414", "1.8925113314884996,1.6060535022887166",
+               "0.7073598851886943,2.188553624246118"]
+    replays = [base.format(c) for c in candles]
+    assert replay_of(replays[0])[0].start == replay_of(replays[1])[0].start != replay_of(replays[2])[0].start
+    starts = start_room.starts_of(_csv(tmp_path / "j.csv", [(51, k != 2, r) for k, r in enumerate(replays)]))
+    assert [(s.missions, s.failed) for s in starts] == [(2, 0), (1, 1)]  # sorted by pose: x 2.0836, 2.0919
+    assert starts[0].gap_mm == pytest.approx(start_room.measure(replays[0])[1])
+    assert starts[1].gap_mm == pytest.approx(start_room.measure(replays[2])[1])
+    assert starts[0].gap_mm != pytest.approx(starts[1].gap_mm, abs=1.0)
+
+
 @pytest.mark.parametrize("content, argv, names", [
     ("seed,success\n1,True\n", [], ["replay"]),
+    ("seed,success,replay\n1,True\n", [], ["row 2", "cells"]),
+    ("seed,success,replay\nx,True,ffr run --seed 1 --start random\n", [], ["row 2", "'x'"]),
+    ("seed,success,replay\n1,True,ffr run --seed 1 --start random --bogus\n", [], ["row 2", "--bogus"]),
+    ("seed,success,replay\n1,True,ffr run --seed 1 --start random --arena-jitter 5\n", [],
+     ["row 2", "--arena-jitter = '5'"]),
+    (b"seed,success,replay\n\xff\xfe,True,x\n", [], ["s.csv", "not a CSV text"]),
+    ("seed,success,replay\n", ["--bins", "10,nan"], ["--bins", "nan"]),
+    ("seed,success,replay\n", ["--bins", "10,inf"], ["--bins", "inf"]),
+    ("seed,success,replay\n", ["--rows", "SELF"], ["--rows", "own CSV"]),
     ("seed,success,replay\n1,True,ffr run --room 1\n", [], ["ffr run --room 1", "not a random"]),
     ("seed,success,replay\n1,True,ffr sweep\n", [], ["ffr sweep"]),
     (None, [], ["no/such.csv"]),
@@ -78,12 +103,15 @@ def test_the_command_prints_the_table_and_writes_rows(tmp_path: Path, capsys: py
     ("seed,success,replay\n", ["--what"], ["--what"]),
 ])
 def test_bad_input_gets_one_line_and_exit_2(tmp_path: Path, capsys: pytest.CaptureFixture[str],
-                                           content: str | None, argv: list[str], names: list[str]) -> None:
+                                           content: str | bytes | None, argv: list[str], names: list[str]) -> None:
     path = tmp_path / "s.csv"
     if content is None:
         path = tmp_path / "no/such.csv"
+    elif isinstance(content, bytes):
+        path.write_bytes(content)
     else:
         path.write_text(content)
+    argv = [str(path) if a == "SELF" else a for a in argv]
     assert start_room.main([str(path), *argv]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and all(n in err for n in names), err
