@@ -50,13 +50,27 @@ class Place:
         return (self.room, self.step, self.state, "contact" if self.contact else self.detail)
 
 
+def sweep_rows(path: Path, needed: Sequence[str] = NEEDED) -> list[dict[str, str]]:
+    """The rows of an ``ffr sweep --out`` CSV; ValueError naming the file if a needed column is
+    missing or the file is no UTF-8 text."""
+    try:
+        with path.open(newline="", encoding="utf-8") as fh:
+            reader = csv.DictReader(fh)
+            missing = [c for c in needed if c not in (reader.fieldnames or [])]
+            if missing:
+                raise ValueError(f"{path}: column {missing[0]!r} missing (an ffr sweep --out CSV is needed)")
+            return list(reader)
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path}: not a CSV text file ({exc.reason} at byte {exc.start})") from None
+
+
+def failed(row: dict[str, str]) -> bool:
+    """A sweep row's mission did not succeed."""
+    return row["success"].strip().lower() not in ("true", "1")
+
+
 def _failed_rows(path: Path) -> list[dict[str, str]]:
-    with path.open(newline="") as fh:
-        reader = csv.DictReader(fh)
-        missing = [c for c in NEEDED if c not in (reader.fieldnames or [])]
-        if missing:
-            raise ValueError(f"{path}: column {missing[0]!r} missing (an ffr sweep --out CSV is needed)")
-        return [r for r in reader if r["success"].strip().lower() not in ("true", "1")]
+    return [r for r in sweep_rows(path) if failed(r)]
 
 
 def replay_of(command: str) -> tuple[Any, str]:

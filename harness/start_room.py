@@ -23,14 +23,14 @@ it to say which starts are left.
 
 from __future__ import annotations
 
-import csv
 import math
 import re
 import sys
+from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import NamedTuple
 
 import numpy as np
 
@@ -38,6 +38,16 @@ from sim_plant.arena import Arena
 
 NEEDED = ("seed", "success", "replay")
 DEFAULT_BINS = (10.0, 20.0, 40.0, 80.0)  # mm: band edges of the gap (chosen: the fold-back span and twice it)
+
+
+class StartGeometry(NamedTuple):
+    """Where a start left the body, in its mission's arena."""
+
+    pose: tuple[float, float, float]  # x, y (m), heading (deg)
+    gap_mm: float
+    angle_deg: float
+    axle_mm: float
+    turn_radius_mm: float
 
 
 @dataclass(frozen=True)
@@ -70,8 +80,8 @@ def _nearest_wall(poly: np.ndarray, arena: Arena) -> tuple[float, int]:
     return best, k
 
 
-def measure(replay: str) -> tuple[tuple[float, float, float], float, float, float, float]:
-    """(pose, gap mm, angle deg, axle mm, turning radius mm) of a replay line's start."""
+def measure(replay: str) -> StartGeometry:
+    """Where a replay line's start left the body."""
     from harness.failure_places import replay_of
     from harness.start_pose import footprint
 
@@ -80,12 +90,9 @@ def measure(replay: str) -> tuple[tuple[float, float, float], float, float, floa
     arena, robot = scn.arena, scn.robot
     gap, k = _nearest_wall(footprint(robot, x, y, th), arena)
     w = arena.walls[k]
-    wall_dir = math.atan2(w.b[1] - w.a[1], w.b[0] - w.a[0])
-    rel = abs(math.degrees(th - wall_dir)) % 180.0
-    angle = min(rel, 180.0 - rel)
-    f, r, left, right = robot.footprint()
-    turn = max(math.hypot(a, b) for a in (f, r) for b in (left, right))
-    return (x, y, math.degrees(th) % 360.0), gap * 1000.0, angle, arena.wall_distance(x, y) * 1000.0, turn * 1000.0
+    rel = abs(math.degrees(th - math.atan2(w.b[1] - w.a[1], w.b[0] - w.a[0]))) % 180.0
+    return StartGeometry((x, y, math.degrees(th) % 360.0), gap * 1000.0, min(rel, 180.0 - rel),
+                         arena.wall_distance(x, y) * 1000.0, robot.turn_radius() * 1000.0)
 
 
 def _start_key(replay: str) -> str | None:
@@ -104,20 +111,13 @@ def _row_error(path: Path, n: int, row: dict[str, str], exc: Exception) -> Value
 def starts_of(path: Path) -> list[Start]:
     """The sweep's starts: one per seed and pose (and arena), its missions counted."""
     from harness.cli_args import UsageError
+    from harness.failure_places import failed, sweep_rows
     from sim_plant.errors import FfrInputError
 
-    try:
-        with path.open(newline="", encoding="utf-8") as fh:
-            reader = csv.DictReader(fh)
-            missing = [c for c in NEEDED if c not in (reader.fieldnames or [])]
-            if missing:
-                raise ValueError(f"{path}: column {missing[0]!r} missing (an ffr sweep --out CSV is needed)")
-            rows = list(reader)
-    except UnicodeDecodeError as exc:
-        raise ValueError(f"{path}: not a CSV text file ({exc.reason} at byte {exc.start})") from None
-    cache: dict[str, tuple[tuple[float, float, float], float, float, float, float]] = {}
-    groups: dict[tuple[int, tuple[float, ...]], list[Any]] = {}
-    for n, r in enumerate(rows, start=2):  # row 1 is the header
+    cache: dict[str, StartGeometry] = {}
+    missions: Counter[tuple[int, StartGeometry]] = Counter()
+    lost: Counter[tuple[int, StartGeometry]] = Counter()
+    for n, r in enumerate(sweep_rows(path, NEEDED), start=2):  # row 1 is the header
         try:
             if any(r.get(c) is None for c in NEEDED) or None in r:
                 raise ValueError("expected as many cells as the header names")
@@ -125,19 +125,16 @@ def starts_of(path: Path) -> list[Start]:
                 raise ValueError("not a random or hallway start")
             seed = int(r["seed"])
             key = _start_key(r["replay"])
-            m = cache.get(key) if key is not None else None
-            if m is None:
-                m = measure(r["replay"])
+            g = cache.get(key) if key is not None else None
+            if g is None:
+                g = measure(r["replay"])
                 if key is not None:
-                    cache[key] = m
+                    cache[key] = g
         except (ValueError, UsageError, FfrInputError) as exc:
             raise _row_error(path, n, r, exc) from None
-        pose, gap, angle, axle, turn = m
-        g = groups.setdefault((seed, tuple(round(v, 6) for v in (*pose, gap))), [seed, m, 0, 0])
-        g[2] += 1
-        g[3] += r["success"].strip().lower() not in ("true", "1")
-    out = [Start(seed, pose, gap, angle, axle, turn, missions, failed)
-           for seed, (pose, gap, angle, axle, turn), missions, failed in groups.values()]
+        missions[seed, g] += 1
+        lost[seed, g] += failed(r)
+    out = [Start(seed, *g, missions=m, failed=lost[seed, g]) for (seed, g), m in missions.items()]
     return sorted(out, key=lambda s: (s.seed, s.pose))
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -167,6 +168,10 @@ class RobotParams:
         """(front, rear, left, right) extents of the body rectangle in the body frame."""
         hw = self.body.width / 2.0
         return self.body.length_front, -self.body.length_rear, hw, -hw
+
+    def turn_radius(self) -> float:
+        """The body's farthest corner from the axle midpoint (m): the circle it sweeps turning in place."""
+        return math.hypot(max(self.body.length_front, self.body.length_rear), self.body.width / 2.0)
 
 
 def _build(cls: type, table: Any) -> Any:

@@ -36,8 +36,7 @@ TRACK_SCALES = (0.95, 0.975, 1.0, 1.025, 1.05)
 
 def turn_radius_m() -> float:
     """The body's farthest corner from the axle midpoint (it sweeps this circle turning in place)."""
-    b = load_robot().body
-    return math.hypot(max(b.length_front, b.length_rear), b.width / 2.0)
+    return load_robot().turn_radius()
 
 
 def start_poses(n: int, seed: int, arena: Arena | None = None,
