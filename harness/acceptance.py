@@ -32,6 +32,7 @@ from pathlib import Path
 from typing import Any
 
 from harness.cli_args import EXIT_INPUT, UsageError, _Parser
+from sim_plant.broken_pipe import exit_with
 
 
 @dataclass(frozen=True)
@@ -253,4 +254,4 @@ def main(argv: Sequence[str] | None = None, runner: Runner = run_ffr) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    exit_with(main)

@@ -38,6 +38,7 @@ import numpy as np
 from harness.loop import I_SENS, run_mission
 from harness.scenario import make_scenario
 from harness.tick import _call_step
+from sim_plant.broken_pipe import exit_with
 from sim_plant.drivetrain import build_params, run_free
 from sim_plant.plant import _advance
 from sim_plant.robot import RobotParams
@@ -479,4 +480,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    exit_with(main)

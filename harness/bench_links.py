@@ -18,6 +18,7 @@ from harness.scenario import make_scenario
 from hil_bridge import codec
 from hil_bridge.codec import MsgType
 from hil_bridge.datagram_link import DatagramLink
+from sim_plant.broken_pipe import exit_with
 
 LINKS = ("ctypes:", "host-board:serial", "host-board:serial#transport=tcp", "host-board:can", "host-board:can#fd=1")
 EMULATED = "qemu:mps2-an386"  # the Cortex-M4 build, when QEMU is installed: over its Ethernet (the default)
@@ -127,4 +128,4 @@ def bench_links() -> None:
 
 
 if __name__ == "__main__":
-    bench_links()
+    exit_with(bench_links)

@@ -21,6 +21,7 @@ from harness.b2b import compare_traces
 from harness.loop import run_mission
 from harness.scenario import make_scenario
 from hil_bridge.qemu_board import MACHINES
+from sim_plant.broken_pipe import exit_with
 
 TICK_MS = 10.0
 # the tick each board runs (docs/boards.md): the Cortex-M0 cannot keep 10 ms, so it runs 20 ms
@@ -62,9 +63,13 @@ def bench_boards(rooms: tuple[int, ...] = (1, 4)) -> None:
                           "(its tick: docs/boards.md)")
 
 
-if __name__ == "__main__":
+def main() -> None:
     if shutil.which("qemu-system-arm") is None:
         print("boards: skipped, needs qemu-system-arm")
     else:
         print("boards on QEMU (-icount shift=0: instructions counted exactly; load at the real clock estimated):")
         bench_boards()
+
+
+if __name__ == "__main__":
+    exit_with(main)

@@ -13,7 +13,6 @@ that cannot be used; the message is one line naming file, field and value.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
@@ -33,6 +32,7 @@ from harness.cli_args import (
     firmware_link,
     library_of_link,
 )
+from sim_plant.broken_pipe import silence_stdout
 from sim_plant.errors import FfrInputError
 
 # The paper's Table 1 (its robot, its parameters).
@@ -375,7 +375,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = build_parser().parse_args(argv)
         if args.command in ("run", "b2b") and args.room is None and args.candle is None and args.scenario is None:
             args.room = 1
-        return _execute(args)
+        status = _execute(args)
+        sys.stdout.flush()  # here, not at exit, so that a reader that left is caught below
+        return status
     except UsageError as exc:
         print(f"ffr: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
@@ -386,8 +388,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("ffr: interrupted", file=sys.stderr)
         return 130
     except BrokenPipeError:  # `ffr table1 | head`: the reader left; no traceback, and none at exit either
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        return 128 + 13  # as a process killed by SIGPIPE
+        return silence_stdout()  # 141, as a process killed by SIGPIPE
 
 
 if __name__ == "__main__":

@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from harness import sweep as sw
+from sim_plant.broken_pipe import exit_with
 
 # One noise kind per entry: its profile groups at scale 1.0.
 REFERENCE: dict[str, dict[str, dict[str, Any]]] = {
@@ -129,4 +130,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    exit_with(main)

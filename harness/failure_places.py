@@ -28,6 +28,8 @@ from typing import Any
 
 import numpy as np
 
+from sim_plant.broken_pipe import exit_with
+
 NEEDED = ("room", "candle_x", "candle_y", "seed", "success", "outcome", "detail", "replay")
 
 
@@ -149,4 +151,4 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    exit_with(main)

@@ -19,6 +19,7 @@ from collections.abc import Sequence
 
 from harness.cli_args import EXIT_INPUT, UsageError, _Parser
 from harness.loop import F_T, F_TH, F_X, F_Y, I_CONTACT, I_SENS, I_STATE, I_STEP, Trace
+from sim_plant.broken_pipe import exit_with
 from sim_plant.errors import FfrInputError
 from sim_plant.sensors.channels import CH_ENC_L, CH_ENC_R, CH_FLAME_L, CH_FLAME_R, CH_IR, CH_LINE
 
@@ -79,4 +80,4 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    exit_with(main)

@@ -23,6 +23,7 @@ import tempfile
 import time
 
 from harness.cli_args import EXIT_INPUT, UsageError, _Parser
+from sim_plant.broken_pipe import exit_with
 
 
 def _write_map(path: str) -> int:
@@ -76,4 +77,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    exit_with(main)

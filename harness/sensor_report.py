@@ -17,6 +17,7 @@ import sys
 from harness.loop import run_mission
 from harness.scenario import make_scenario
 from sim_plant.arena import Arena, load_arena
+from sim_plant.broken_pipe import exit_with
 from sim_plant.sensors import NoiseProfile, load_noise_profile
 
 
@@ -97,4 +98,4 @@ def main(argv: list[str] | None = None) -> None:
 
 
 if __name__ == "__main__":
-    main()
+    exit_with(main)

@@ -9,6 +9,7 @@ from pathlib import Path
 
 from harness.cli import main as cli_main
 from harness.server import DEFAULT_IDLE_S, Server
+from sim_plant.broken_pipe import exit_with
 
 
 def main(argv: list[str]) -> int:
@@ -21,4 +22,4 @@ def main(argv: list[str]) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    exit_with(lambda: main(sys.argv[1:]))

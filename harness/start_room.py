@@ -35,6 +35,7 @@ from typing import NamedTuple
 import numpy as np
 
 from sim_plant.arena import Arena
+from sim_plant.broken_pipe import exit_with
 
 NEEDED = ("seed", "success", "replay")
 DEFAULT_BINS = (10.0, 20.0, 40.0, 80.0)  # mm: band edges of the gap (chosen: the fold-back span and twice it)
@@ -228,4 +229,4 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    exit_with(main)

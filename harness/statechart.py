@@ -39,6 +39,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from sim_plant.broken_pipe import exit_with
+
 REPO = Path(__file__).resolve().parents[1]
 SRC = REPO / "firmware" / "src"
 HEADER = REPO / "firmware" / "include" / "ffr.h"
@@ -779,4 +781,4 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    exit_with(main)

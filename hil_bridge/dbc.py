@@ -22,6 +22,7 @@ from cantools.database.can import Database, Message, Node, Signal
 from cantools.database.can.formats.dbc import DbcAttribute, DbcAttributeDefinition, DbcSpecifics
 
 from hil_bridge import codec
+from hil_bridge.broken_pipe import exit_with
 from hil_bridge.codec import BOARD_TO_HOST, BODY_WIRE, MsgType
 
 HOST, BOARD = "HOST", "BOARD"
@@ -96,4 +97,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    exit_with(main)

@@ -15,6 +15,7 @@ import sys
 import numpy as np
 
 from hil_bridge import cobs, codec
+from hil_bridge.broken_pipe import exit_with
 from hil_bridge.codec import MsgType
 from hil_bridge.crc import crc16
 from hil_bridge.errors import DecodeError, Status
@@ -94,4 +95,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    exit_with(main)

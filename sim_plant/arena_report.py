@@ -9,6 +9,7 @@ import numpy as np
 
 from sim_plant.arena import Arena, load_arena
 from sim_plant.arena_jitter import MAX_JITTER, MERGE_GAP, _axis_knots
+from sim_plant.broken_pipe import exit_with
 from sim_plant.errors import CandlePlacementError, FfrInputError
 from sim_plant.file_schemas import PLACEMENT_RULES
 
@@ -50,11 +51,17 @@ def describe(arena: Arena) -> str:
     return "\n".join(lines)
 
 
-if __name__ == "__main__":
+def main() -> int:
+    """``python -m sim_plant.arena_report [FILE]``: the arena's measures, or one line and status 2."""
     import sys
 
     try:
         print(describe(load_arena(sys.argv[1] if len(sys.argv) > 1 else None)))
     except FfrInputError as exc:
         print(f"error: {exc}", file=sys.stderr)
-        sys.exit(2)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    exit_with(main)

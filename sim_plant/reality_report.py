@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from sim_plant.broken_pipe import exit_with
 from sim_plant.errors import FfrInputError
 from sim_plant.robot import RobotParams, load_robot
 from sim_plant.sensors import load_noise_profile
@@ -57,4 +58,4 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    exit_with(main)
