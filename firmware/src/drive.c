@@ -71,6 +71,21 @@ static void true_up_heading(ffr_state_t *st)
     }
 }
 
+/*
+ * Straight on the held heading, trued up by the walls beside as a corridor
+ * leg is (true_up_heading), without steering by them: the explorer's legs to
+ * an opening's middle, into a doorway and out, and home. Held by odometry
+ * alone, a robot whose two sides differ (one track 1 % larger than the
+ * other turns it 0.01 x 1000 / 170 rad, 3.4 degrees, a metre, unseen by the
+ * encoders) drifted off the hallway's line, and the turn ending the leg met
+ * a jamb or a wall (docs/firmware.md, "The explorer's straight legs").
+ */
+void ffr_drive_held(ffr_state_t *st, float speed)
+{
+    true_up_heading(st);
+    ffr_drive_heading(st, st->route.heading_ref_rad, speed);
+}
+
 void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
 {
     const ffr_config_t *cfg = &st->cfg;

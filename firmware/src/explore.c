@@ -279,7 +279,7 @@ static void follow(ffr_state_t *st)
             turn(st, toward(e), EX_PROBE);
             return;
         }
-        ffr_drive_heading(st, st->route.heading_ref_rad, ffr_stopping_speed(left, cfg->cruise_speed_mm_s));
+        ffr_drive_held(st, ffr_stopping_speed(left, cfg->cruise_speed_mm_s));
     }
 }
 
@@ -315,7 +315,7 @@ static void probe(ffr_state_t *st, const ffr_inputs_t *in)
         phase(st, EX_FOLLOW); /* a hallway (or a wall ahead): the walk goes on */
         return;
     }
-    ffr_drive_heading(st, st->route.heading_ref_rad, cfg->room_speed_mm_s);
+    ffr_drive_held(st, cfg->room_speed_mm_s);
 }
 
 static void explore_step(ffr_state_t *st, const ffr_inputs_t *in)
@@ -364,7 +364,7 @@ static void explore_step(ffr_state_t *st, const ffr_inputs_t *in)
             turn(st, toward(e), EX_FOLLOW);
             return;
         }
-        ffr_drive_heading(st, st->route.heading_ref_rad, ffr_stopping_speed(left, cfg->room_speed_mm_s));
+        ffr_drive_held(st, ffr_stopping_speed(left, cfg->room_speed_mm_s));
         return;
     }
     case EX_HOME: {
@@ -376,7 +376,7 @@ static void explore_step(ffr_state_t *st, const ffr_inputs_t *in)
             st->flags |= FFR_FLAG_DONE;
             return;
         }
-        ffr_drive_heading(st, st->route.heading_ref_rad, ffr_stopping_speed(left, cfg->room_speed_mm_s));
+        ffr_drive_held(st, ffr_stopping_speed(left, cfg->room_speed_mm_s));
         return;
     }
     case EX_DONE:

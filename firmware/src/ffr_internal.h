@@ -323,6 +323,8 @@ int ffr_square_on_wall_ahead(ffr_state_t *st);
 void ffr_exit_wall_watch(ffr_state_t *st);
 int ffr_square_on_wall_beside(ffr_state_t *st);
 void ffr_drive_heading(ffr_state_t *st, float heading, float speed);
+/* straight on route.heading_ref_rad, it and odometry trued up by the walls beside */
+void ffr_drive_held(ffr_state_t *st, float speed);
 void ffr_stop(ffr_state_t *st);
 /* Speed (mm/s) for `remaining_mm` to a stopping point: slows into the stop
  * so it is short, never below a crawl that still overcomes friction. */

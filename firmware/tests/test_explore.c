@@ -287,6 +287,69 @@ TEST(a_wall_end_behind_where_the_leg_began_is_the_door_just_left)
     CHECK_NEAR(r.st.explore.goal_mm, start + 30.0f, 1e-3);
 }
 
+/* A straight leg of the explorer (ffr_drive_held) beside a hallway's walls,
+ * odometry's heading `err` off the truth from the start: the robot's true
+ * pose driven by the firmware's commands, the rangers read from it. Returns
+ * the true lateral offset after `mm` of travel; *err_end: odometry's error
+ * then. held: ffr_drive_held, else the heading held by odometry alone. */
+static float straight_leg(int held, float err, float mm, float *err_end)
+{
+    ffr_config_t cfg;
+    ffr_state_t st;
+    rig_walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    const float dt = 0.02f;
+    float x = 0.0f, y = 0.0f, th = 0.0f;
+    int i;
+    ffr_config_default(&cfg);
+    ffr_init(&st, &cfg);
+    st.odo.heading_rad = err;
+    st.route.heading_ref_rad = 0.0f; /* the hallway's heading as it believes it */
+    while (st.odo.dist_mm < mm) {
+        float before, ds, dth;
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            st.ir_mm[i] = rig_beam_mm(&cfg, &w, i, x, y, th);
+        }
+        ffr_ir_geom_update(&st.ir_geom, &st.cfg, st.ir_mm);
+        before = st.odo.heading_rad;
+        if (held) {
+            ffr_drive_held(&st, 300.0f);
+        } else {
+            ffr_drive_heading(&st, st.route.heading_ref_rad, 300.0f);
+        }
+        err -= before - st.odo.heading_rad; /* what the walls took off odometry's error */
+        ds = st.cmd_v_mm_s * dt;
+        dth = st.cmd_w_rad_s * dt;
+        x += ds * ffr_cosf(th + 0.5f * dth);
+        y += ds * ffr_sinf(th + 0.5f * dth);
+        th += dth;
+        st.odo.heading_rad = th + err;
+        st.odo.x_mm += ds * ffr_cosf(st.odo.heading_rad);
+        st.odo.y_mm += ds * ffr_sinf(st.odo.heading_rad);
+        st.odo.dist_mm += ds;
+    }
+    *err_end = err;
+    return y;
+}
+
+TEST(a_straight_leg_is_trued_up_by_the_walls_beside)
+{
+    float err, y;
+    /* odometry 6 degrees off (a robot whose sides differ, after a few
+     * metres): held by odometry alone, 1.2 m on it crosses 1200 sin 6 deg =
+     * 125 mm of a 460 mm hallway, toward the wall the rangers see */
+    y = straight_leg(0, 6.0f * FFR_DEG, 1200.0f, &err);
+    CHECK(y < -110.0f);
+    CHECK_NEAR(err / FFR_DEG, 6.0, 1e-3);
+    /* trued up by the walls as it goes: the error down to the fix's dead
+     * zone (1.5 degrees) and the robot still near the hallway's middle */
+    y = straight_leg(1, 6.0f * FFR_DEG, 1200.0f, &err);
+    CHECK(ffr_absf(err) < 2.0f * FFR_DEG);
+    CHECK(ffr_absf(y) < 60.0f);
+    y = straight_leg(1, -6.0f * FFR_DEG, 1200.0f, &err);
+    CHECK(ffr_absf(err) < 2.0f * FFR_DEG);
+    CHECK(ffr_absf(y) < 60.0f);
+}
+
 SUITE(explore,
       TEST_REF(the_home_circle_is_two_lines_a_chord_apart),
       TEST_REF(turn_targets_are_square_to_the_walls),
@@ -296,4 +359,5 @@ SUITE(explore,
       TEST_REF(a_whole_opening_whose_middle_is_passed_is_backed_to_then_turned_into),
       TEST_REF(a_probe_that_finds_a_hallway_keeps_where_the_leg_began),
       TEST_REF(the_follow_holds_the_hallway_heading_within_ten_degrees),
-      TEST_REF(a_wall_end_behind_where_the_leg_began_is_the_door_just_left));
+      TEST_REF(a_wall_end_behind_where_the_leg_began_is_the_door_just_left),
+      TEST_REF(a_straight_leg_is_trued_up_by_the_walls_beside));

@@ -144,3 +144,20 @@ def test_the_exact_calibration_profile_is_realistic_without_calibration_error():
         spun = a.slip.track_factor * ROBOT.track.track_width
         assert a.calibration.track_width == pytest.approx(spun, rel=1e-15)
         assert a.calibration.track_width != b.calibration.track_width
+
+
+def test_the_sides_alike_profile_is_the_exact_one_with_identical_sides():
+    from pathlib import Path
+
+    from sim_plant.robot import Sides
+    scen = Path(__file__).resolve().parents[2] / "scenarios"
+    alike = load_noise_profile(str(scen / "realistic_exact_sides_alike.toml"))
+    exact = load_noise_profile(str(scen / "realistic_exact_calibration.toml"))
+    assert alike.ir == exact.ir and alike.flame == exact.flame
+    assert alike.reality.side_motor == alike.reality.side_friction == alike.reality.side_wheel_radius == 0.0
+    for seed in (0, 7, 46):
+        a = alike.reality.draw(ROBOT, np.random.default_rng(seed))
+        b = exact.reality.draw(ROBOT, np.random.default_rng(seed))
+        assert a.sides == Sides() and b.sides != Sides()  # both sides alike; the exact profile's differ
+        assert a.slip == b.slip and a.battery == b.battery  # the rest of the floor the same draw
+        assert a.calibration.track_width == pytest.approx(a.slip.track_factor * ROBOT.track.track_width, rel=1e-15)
