@@ -92,6 +92,11 @@
 #define PROBE_MM 15.0f            /* the probe for fold-back: this far, straight (chosen) */
 #define PROBE_SPEED_MM_S 40.0f    /* and this slowly (chosen: a reading or two per mm)   */
 #define PROBE_TELL_MM 8.0f        /* a reading changed this much on the probe tells its way */
+/* a straight escape forward stops this far (along the move) from a wall
+ * across it at a slant, in front of a front corner (chosen: a realistic
+ * robot's corner ranger, near its span's bottom, read the wall some 30 mm
+ * far: 40 mm let the corner meet it, 100 stopped it ~70 mm off) */
+#define CORNER_FREE_MM 100.0f
 #define SIDE_MARGIN_MM 20.0f      /* a wall beside within the turning radius + this: the sweep turns away from it (chosen) */
 
 /* a shift to stand at wall_target_mm at most this far across the route's
@@ -1007,6 +1012,63 @@ static uint8_t beside_skip(const ffr_state_t *st, float side)
     return m;
 }
 
+/* Driving straight ahead, how far until a front corner meets the line
+ * through the centre ranger's hit and a corner ranger's (both measured, not
+ * at the span's bottom), for a line the move runs into at 20 degrees or
+ * more (a wall beside, along the move, is no end of it). A wall across at a
+ * slant is met first by the corner on its side, while the centre ranger
+ * still reads it far ahead: end_room (the hits in the body's path) saw room,
+ * and a realistic robot's straight escape drove at 47 degrees to a wall
+ * until the corner ranger read it folded back and the sweep's turn put the
+ * corner on it (`--noise realistic --start hallway`, start seed 23).
+ * 65535 if none. */
+#define CORNER_INTO_COS 0.34f /* 20 degrees into it (chosen) */
+static float corner_room(const ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    const ffr_ir_geom_t *g = &st->ir_geom;
+    static const uint8_t corner_ranger[2] = {FFR_IR_LF, FFR_IR_RF};
+    float room = 65535.0f;
+    int k;
+    if (!ffr_ir_valid(cfg, st->ir_mm[FFR_IR_CF]) || st->ir_mm[FFR_IR_CF] <= cfg->ir_min_mm + 0.5f ||
+        st->ir_mm[FFR_IR_CF] > CLEAR_RANGE_MM) {
+        return room;
+    }
+    for (k = 0; k < 2; ++k) {
+        int c = corner_ranger[k];
+        float ex, ey, len, nx, ny, cx, cy, d;
+        if (!ffr_ir_valid(cfg, st->ir_mm[c]) || st->ir_mm[c] <= cfg->ir_min_mm + 0.5f ||
+            st->ir_mm[c] > CLEAR_RANGE_MM) {
+            continue;
+        }
+        ex = g->hit_x_mm[c] - g->hit_x_mm[FFR_IR_CF];
+        ey = g->hit_y_mm[c] - g->hit_y_mm[FFR_IR_CF];
+        len = ffr_sqrtf(ex * ex + ey * ey);
+        if (len < CLEAR_LINE_MIN_MM || len > CLEAR_LINE_MAX_MM) {
+            continue;
+        }
+        /* the line's unit normal, pointing away from the axle */
+        nx = -ey / len;
+        ny = ex / len;
+        if (nx * g->hit_x_mm[FFR_IR_CF] + ny * g->hit_y_mm[FFR_IR_CF] < 0.0f) {
+            nx = -nx;
+            ny = -ny;
+        }
+        if (nx < CORNER_INTO_COS) {
+            continue;
+        }
+        /* the front corner on the corner ranger's side: its gap to the
+         * line, along the move */
+        cx = cfg->body_front_mm;
+        cy = k == 0 ? cfg->body_half_width_mm : -cfg->body_half_width_mm;
+        d = ((g->hit_x_mm[FFR_IR_CF] - cx) * nx + (g->hit_y_mm[FFR_IR_CF] - cy) * ny) / nx;
+        if (d < room) {
+            room = d;
+        }
+    }
+    return room;
+}
+
 /* the end the escape drives toward is free */
 static int escape_free(const ffr_state_t *st)
 {
@@ -1016,6 +1078,9 @@ static int escape_free(const ffr_state_t *st)
     float band = st->orient.target_rad != 0.0f ? ARC_BAND_MM : BAND_MARGIN_MM;
     const ffr_home_orient_t *o = &st->orient;
     float need = st->cfg.body_front_mm + ESCAPE_FREE_MM;
+    if (!o->reverse && o->target_rad == 0.0f && corner_room(st) < CORNER_FREE_MM) {
+        return 0; /* a wall across at a slant, ahead of a front corner */
+    }
     if (end_room(st, o->reverse & 1u, band, 0u) > need) {
         return 1;
     }

@@ -1182,6 +1182,76 @@ TEST(room_to_turn_again_after_the_shift)
     }
 }
 
+/* The rangers' readings of one straight wall: the points p with n . p = c
+ * (world frame, n a unit normal pointing away from the robot), robot at
+ * (x, y, th); below the span's bottom as the bottom (readings()' rule). The
+ * right corner ranger is a part that reads rf_long mm long near its span's
+ * bottom and folds back below 55 mm (folded_mm): it never reads the bottom. */
+static void slant_readings(const ffr_config_t *cfg, float nx, float ny, float c, float rf_long, float x, float y,
+                           float th, float ir[FFR_IR_COUNT])
+{
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        float mx, my, ux, uy, un, t;
+        rig_ray(cfg, i, x, y, th, &mx, &my, &ux, &uy);
+        un = ux * nx + uy * ny;
+        t = un > 0.05f ? (c - (mx * nx + my * ny)) / un : -1.0f;
+        if (t <= 0.0f || t > cfg->ir_max_mm) {
+            ir[i] = FFR_IR_NONE(cfg);
+        } else if (i == FFR_IR_RF) {
+            ir[i] = t < 55.0f ? folded_mm(cfg, t) : t + rf_long;
+        } else {
+            ir[i] = t < cfg->ir_min_mm ? cfg->ir_min_mm : t;
+        }
+    }
+}
+
+TEST(a_straight_escape_stops_short_of_a_wall_across_at_a_slant)
+{
+    /* a straight escape forward (200 mm to go) toward a wall across its
+     * way at 45 degrees, the front right corner 150 mm from it along the
+     * move, the right corner ranger reading 45 mm long near its span's
+     * bottom (a realistic robot's, start seed 23): the centre ranger reads
+     * the wall ~220 mm beyond the front and the corner ranger never at its
+     * span's bottom, so the body's path looks free for the whole move and
+     * the corner would meet the wall after 150 mm. The line through the two
+     * rangers' hits tells: it stops with the corner short of the wall */
+    const float nx = 0.70710678f, ny = -0.70710678f, gap0 = 150.0f;
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT];
+    float c, x0, corner_gap = 0.0f;
+    rig_t r;
+    int i;
+    ffr_config_default(&cfg);
+    /* the wall: gap0 along +x beyond the front right corner (120, -100) */
+    c = (120.0f + gap0) * nx + (-100.0f) * ny;
+    rig_init(&r, &cfg);
+    slant_readings(&cfg, nx, ny, c, 45.0f, 0.0f, 0.0f, 0.0f, ir);
+    CHECK(ffr_ir_valid(&cfg, ir[FFR_IR_CF]) && ir[FFR_IR_CF] + cfg.ir_x_mm[FFR_IR_CF] > 300.0f);
+    feed(&r, &cfg, ir);
+    rig_tick(&r); /* the readings in */
+    ffr_orient_begin(&r.st);
+    r.st.orient.phase = 8u; /* PH_ESCAPE: straight (curvature 0), forward */
+    r.st.orient.leg = 0u;
+    r.st.orient.reverse = 0u;
+    r.st.orient.target_rad = 0.0f;
+    r.st.orient.escapes = 1u;
+    r.st.orient.goal_mm = r.st.odo.dist_mm + 200.0f;
+    r.st.started = 1;
+    x0 = r.st.odo.x_mm;
+    for (i = 0; i < 400 && r.st.orient.phase == 8u; ++i) {
+        slant_readings(&cfg, nx, ny, c, 45.0f, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+    }
+    CHECK(r.st.orient.phase != 8u);
+    /* the front right corner's gap to the wall along the move */
+    corner_gap = (c - ((r.st.odo.x_mm + 120.0f) * nx + (r.st.odo.y_mm - 100.0f) * ny)) / nx;
+    CHECK(corner_gap > 60.0f);
+    CHECK(r.st.odo.x_mm - x0 < 90.0f);
+    CHECK(r.st.odo.x_mm - x0 > 20.0f); /* it did move: the wall was not in the way at once */
+}
+
 TEST(a_wall_square_to_the_walls_from_two_measured_hits)
 {
     /* the rear pair on a wall across behind, 160 mm off: a line square to
@@ -1225,4 +1295,5 @@ SUITE(home_orient,
       TEST_REF(the_sweep_turns_away_from_a_wall_beside),
       TEST_REF(a_wall_beside_below_the_span_is_no_end_of_the_s),
       TEST_REF(room_to_turn_again_after_the_shift),
+      TEST_REF(a_straight_escape_stops_short_of_a_wall_across_at_a_slant),
       TEST_REF(a_wall_square_to_the_walls_from_two_measured_hits));
