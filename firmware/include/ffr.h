@@ -385,7 +385,7 @@ typedef struct {
     uint8_t folded;                /* rangers (bit i) the probe saw folded back */
     int8_t sweep_side;             /* the sweep turns: +1 left, -1 right, 0 toward home_wall_side */
     uint8_t after_shift;           /* room to turn looked for after the shift: its move ends in the aim */
-    uint8_t reserved;
+    uint8_t slant_watch;           /* this straight escape began clear of a wall across it at a slant: it stops short of one */
     float leg_mm;                  /* the escape's arc legs' length           */
     float near_mm;                 /* nearest wall line seen in the sweep, from where it stands */
     float near_x_mm, near_y_mm;    /* its nearest point (odometry, from the robot) */

@@ -95,7 +95,8 @@
 /* a straight escape forward stops this far (along the move) from a wall
  * across it at a slant, in front of a front corner (chosen: a realistic
  * robot's corner ranger, near its span's bottom, read the wall some 30 mm
- * far: 40 mm let the corner meet it, 100 stopped it ~70 mm off) */
+ * far: with 40 mm the corner met it, with 100 that mission went home with
+ * no contact) */
 #define CORNER_FREE_MM 100.0f
 #define SIDE_MARGIN_MM 20.0f      /* a wall beside within the turning radius + this: the sweep turns away from it (chosen) */
 
@@ -126,7 +127,7 @@ void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
     o->folded = 0u;
     o->sweep_side = 0;
     o->after_shift = 0u;
-    o->reserved = 0u;
+    o->slant_watch = 0u;
     o->leg_mm = 0.0f;
     o->near_mm = 65535.0f;
     o->near_x_mm = 0.0f;
@@ -719,6 +720,7 @@ void ffr_orient_begin(ffr_state_t *st)
  * the front is free, else backward). 1 when there is room (or the moves are
  * spent): the sweep begins here. */
 static float end_room(const ffr_state_t *st, int backward, float band, uint8_t skip);
+static void watch_slant(ffr_state_t *st);
 static uint8_t beside_skip(const ffr_state_t *st, float side);
 
 /* One move away from a wall d mm off in direction (nx, ny) (body frame). */
@@ -776,6 +778,7 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
             o->goal_mm = st->odo.dist_mm + (want < ESCAPE_MAX_MM ? want : ESCAPE_MAX_MM);
         }
     }
+    watch_slant(st);
     o->phase = PH_ESCAPE;
 }
 
@@ -1057,16 +1060,27 @@ static float corner_room(const ffr_state_t *st)
         if (nx < CORNER_INTO_COS) {
             continue;
         }
-        /* the front corner on the corner ranger's side: its gap to the
-         * line, along the move */
+        /* the front corner the line comes nearest (on the side its normal
+         * leans to): its gap to the line, along the move */
         cx = cfg->body_front_mm;
-        cy = k == 0 ? cfg->body_half_width_mm : -cfg->body_half_width_mm;
+        cy = ny >= 0.0f ? cfg->body_half_width_mm : -cfg->body_half_width_mm;
         d = ((g->hit_x_mm[FFR_IR_CF] - cx) * nx + (g->hit_y_mm[FFR_IR_CF] - cy) * ny) / nx;
         if (d < room) {
             room = d;
         }
     }
     return room;
+}
+
+/* A straight escape forward watches for a wall across it at a slant only
+ * if it begins clear of one (corner_room at least CORNER_FREE_MM): a line
+ * that near from the start may be two walls' hits across a room's corner
+ * (the centre ranger on a wall ahead, the corner one on a wall beside), and
+ * refusing the move at once would spend the escapes without moving */
+static void watch_slant(ffr_state_t *st)
+{
+    ffr_home_orient_t *o = &st->orient;
+    o->slant_watch = (uint8_t)(!o->reverse && o->target_rad == 0.0f && corner_room(st) >= CORNER_FREE_MM);
 }
 
 /* the end the escape drives toward is free */
@@ -1078,7 +1092,7 @@ static int escape_free(const ffr_state_t *st)
     float band = st->orient.target_rad != 0.0f ? ARC_BAND_MM : BAND_MARGIN_MM;
     const ffr_home_orient_t *o = &st->orient;
     float need = st->cfg.body_front_mm + ESCAPE_FREE_MM;
-    if (!o->reverse && o->target_rad == 0.0f && corner_room(st) < CORNER_FREE_MM) {
+    if (o->slant_watch && o->phase == PH_ESCAPE && corner_room(st) < CORNER_FREE_MM) {
         return 0; /* a wall across at a slant, ahead of a front corner */
     }
     if (end_room(st, o->reverse & 1u, band, 0u) > need) {
@@ -1173,6 +1187,7 @@ void ffr_orient_after_shift(ffr_state_t *st)
     o->target_rad = 0.0f; /* curvature: straight */
     len = (need - d) / ffr_absf(nx) + 10.0f;
     o->goal_mm = st->odo.dist_mm + (len < ESCAPE_MAX_MM ? len : ESCAPE_MAX_MM);
+    watch_slant(st);
     o->phase = PH_ESCAPE;
 }
 
@@ -1259,6 +1274,7 @@ int ffr_orient_step(ffr_state_t *st)
             o->reverse ^= 1u;
             o->target_rad = 0.0f;
             o->goal_mm = st->odo.dist_mm + 2.0f * ESCAPE_RADIUS_MM * ffr_sinf(o->leg_mm / ESCAPE_RADIUS_MM);
+            watch_slant(st);
             return 0;
         }
         /* look again (next tick: the rangers from here); after the shift's
