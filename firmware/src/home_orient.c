@@ -1015,6 +1015,27 @@ static uint8_t beside_skip(const ffr_state_t *st, float side)
     return m;
 }
 
+/* a reading measured within the span (not at its bottom, a bound) and near
+ * enough to draw a wall's line through */
+static int line_reading(const ffr_config_t *cfg, float d)
+{
+    return ffr_ir_valid(cfg, d) && d > cfg->ir_min_mm + 0.5f && d <= CLEAR_RANGE_MM;
+}
+
+/* the unit direction (ux, uy) from hit a to hit b; 0 when they are too close
+ * for a direction or too far apart for one wall */
+static int line_dir(const ffr_ir_geom_t *g, int a, int b, float *ux, float *uy)
+{
+    float ex = g->hit_x_mm[b] - g->hit_x_mm[a], ey = g->hit_y_mm[b] - g->hit_y_mm[a];
+    float len = ffr_sqrtf(ex * ex + ey * ey);
+    if (len < CLEAR_LINE_MIN_MM || len > CLEAR_LINE_MAX_MM) {
+        return 0;
+    }
+    *ux = ex / len;
+    *uy = ey / len;
+    return 1;
+}
+
 /* Driving straight ahead, how far until a front corner meets the line
  * through the centre ranger's hit and a corner ranger's (both measured, not
  * at the span's bottom), for a line the move runs into at 20 degrees or
@@ -1033,26 +1054,18 @@ static float corner_room(const ffr_state_t *st)
     static const uint8_t corner_ranger[2] = {FFR_IR_LF, FFR_IR_RF};
     float room = 65535.0f;
     int k;
-    if (!ffr_ir_valid(cfg, st->ir_mm[FFR_IR_CF]) || st->ir_mm[FFR_IR_CF] <= cfg->ir_min_mm + 0.5f ||
-        st->ir_mm[FFR_IR_CF] > CLEAR_RANGE_MM) {
+    if (!line_reading(cfg, st->ir_mm[FFR_IR_CF])) {
         return room;
     }
     for (k = 0; k < 2; ++k) {
         int c = corner_ranger[k];
-        float ex, ey, len, nx, ny, cx, cy, d;
-        if (!ffr_ir_valid(cfg, st->ir_mm[c]) || st->ir_mm[c] <= cfg->ir_min_mm + 0.5f ||
-            st->ir_mm[c] > CLEAR_RANGE_MM) {
-            continue;
-        }
-        ex = g->hit_x_mm[c] - g->hit_x_mm[FFR_IR_CF];
-        ey = g->hit_y_mm[c] - g->hit_y_mm[FFR_IR_CF];
-        len = ffr_sqrtf(ex * ex + ey * ey);
-        if (len < CLEAR_LINE_MIN_MM || len > CLEAR_LINE_MAX_MM) {
+        float ux, uy, nx, ny, cx, cy, d;
+        if (!line_reading(cfg, st->ir_mm[c]) || !line_dir(g, FFR_IR_CF, c, &ux, &uy)) {
             continue;
         }
         /* the line's unit normal, pointing away from the axle */
-        nx = -ey / len;
-        ny = ex / len;
+        nx = -uy;
+        ny = ux;
         if (nx * g->hit_x_mm[FFR_IR_CF] + ny * g->hit_y_mm[FFR_IR_CF] < 0.0f) {
             nx = -nx;
             ny = -ny;
@@ -1125,21 +1138,12 @@ int ffr_orient_square_wall(const ffr_config_t *cfg, const ffr_ir_geom_t *g, cons
     *ny = 0.0f;
     for (k = 0; k < 6; ++k) {
         int a = WALL_PAIRS[k][0], b = WALL_PAIRS[k][1];
-        float ex, ey, len, fx, fy, d, ca, sa, c2, s2;
-        if (!ffr_ir_valid(cfg, ir_mm[a]) || !ffr_ir_valid(cfg, ir_mm[b]) || ir_mm[a] > CLEAR_RANGE_MM ||
-            ir_mm[b] > CLEAR_RANGE_MM || ir_mm[a] <= cfg->ir_min_mm + 0.5f || ir_mm[b] <= cfg->ir_min_mm + 0.5f) {
-            continue;
-        }
-        ex = g->hit_x_mm[b] - g->hit_x_mm[a];
-        ey = g->hit_y_mm[b] - g->hit_y_mm[a];
-        len = ffr_sqrtf(ex * ex + ey * ey);
-        if (len < CLEAR_LINE_MIN_MM || len > CLEAR_LINE_MAX_MM) {
+        float fx, fy, d, ca, sa, c2, s2;
+        if (!line_reading(cfg, ir_mm[a]) || !line_reading(cfg, ir_mm[b]) || !line_dir(g, a, b, &ca, &sa)) {
             continue;
         }
         /* the line's direction times 4 against the walls' times 4: square
          * (mod 90 degrees) when cos(4 (line - walls)) is near 1 */
-        ca = ex / len;
-        sa = ey / len;
         c2 = ca * ca - sa * sa;
         s2 = 2.0f * ca * sa;
         if ((c2 * c2 - s2 * s2) * c4 + 2.0f * c2 * s2 * s4 < tol) {
