@@ -133,6 +133,8 @@ TEST(a_lone_line_on_the_way_home_turns_the_robot_round)
 
 /* the explorer's phases as outputs.step reports them (explore.c) */
 enum { PH_FOLLOW = 0, PH_WRAP = 1, PH_TURN = 2, PH_PROBE = 3 };
+/* and its phases as explore.c numbers them (ffr_explore_t.phase) */
+enum { EX_LEG_WRAP = 1, EX_LEG_PROBE = 3, EX_LEG_HOME = 5, EX_LEG_BACK = 6 };
 
 TEST(a_whole_opening_whose_middle_is_passed_is_backed_to_then_turned_into)
 {
@@ -350,6 +352,67 @@ TEST(a_straight_leg_is_trued_up_by_the_walls_beside)
     CHECK(ffr_absf(y) < 60.0f);
 }
 
+/* One of the explorer's straight legs (WRAP, PROBE, BACK or HOME) in the
+ * whole firmware on the rig, odometry's heading `err` off the truth at the
+ * start, in the middle of a 460 mm hallway. The truth is a second odometry
+ * fed the rig's encoders (its wheels do not slip), `err` turned from the
+ * firmware's; the rangers read the hallway's walls from it. After `mm` of
+ * travel on the leg, returns odometry's error then (rad). */
+static float leg_error_after(uint8_t leg, float err, float mm)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    ffr_odometry_t truth;
+    rig_walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    float d0;
+    int i, ticks = 0;
+    ffr_config_default(&cfg);
+    cfg.start_area = FFR_START_HALLWAY;
+    started_in_a_hallway(&r, &cfg);
+    ffr_odometry_reset(&truth);
+    ffr_odometry_update(&truth, &cfg, r.in.enc, 0.01f); /* its zero: the encoders as they are */
+    truth.heading_rad = r.st.odo.heading_rad - err;
+    r.st.route.heading_ref_rad = r.st.odo.heading_rad; /* the hallway's heading as it believes it */
+    r.st.explore.phase = leg;
+    r.st.explore.backing = 0;
+    r.st.explore.edge_mm = -1.0e9f; /* no line crossed */
+    r.st.explore.start_mm = r.st.odo.dist_mm;
+    r.st.explore.goal_mm = leg == EX_LEG_BACK ? 5000.0f : r.st.odo.dist_mm + 5000.0f;
+    r.st.state = FFR_ST_FORWARD;
+    d0 = r.st.odo.dist_mm;
+    while (r.st.odo.dist_mm - d0 < mm && ticks++ < 5000) {
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            float b = rig_beam_mm(&cfg, &w, i, truth.x_mm, truth.y_mm, truth.heading_rad);
+            r.in.ir_mv[i] = b < FFR_IR_NONE(&cfg) ? rig_mv_for_mm(&cfg, b) : 0u;
+        }
+        rig_tick(&r);
+        ffr_odometry_update(&truth, &cfg, r.in.enc, 0.01f);
+    }
+    CHECK(r.st.explore.phase == leg); /* still on the leg, driving */
+    CHECK(r.st.cmd_v_mm_s > 0.0f);
+    CHECK(ffr_absf(truth.y_mm) < 150.0f); /* off no wall */
+    return ffr_wrap_pi(r.st.odo.heading_rad - truth.heading_rad);
+}
+
+TEST(every_straight_leg_of_the_explorer_is_trued_up_by_the_walls_beside)
+{
+    static const uint8_t legs[4] = {EX_LEG_WRAP, EX_LEG_PROBE, EX_LEG_BACK, EX_LEG_HOME};
+    int k;
+    for (k = 0; k < 4; ++k) {
+        /* 6 degrees off at the start (a robot whose sides differ, after a
+         * few metres): one wall window (120 mm) takes half of what is over
+         * the fix's dead zone (1.5 degrees) off it, so within 250 mm of
+         * travel (a probe's is 300) it is under 4.5, the same sign; held by
+         * odometry alone (the rig's wheels do not slip) it would stay 6 */
+        float e = leg_error_after(legs[k], 6.0f * FFR_DEG, 250.0f);
+        CHECK(e < 4.5f * FFR_DEG && e > 1.0f * FFR_DEG);
+        e = leg_error_after(legs[k], -6.0f * FFR_DEG, 250.0f);
+        CHECK(e > -4.5f * FFR_DEG && e < -1.0f * FFR_DEG);
+        /* and none made beyond the dead zone where there was none */
+        CHECK(ffr_absf(leg_error_after(legs[k], 0.0f, 250.0f)) < 1.5f * FFR_DEG);
+    }
+}
+
 SUITE(explore,
       TEST_REF(the_home_circle_is_two_lines_a_chord_apart),
       TEST_REF(turn_targets_are_square_to_the_walls),
@@ -360,4 +423,5 @@ SUITE(explore,
       TEST_REF(a_probe_that_finds_a_hallway_keeps_where_the_leg_began),
       TEST_REF(the_follow_holds_the_hallway_heading_within_ten_degrees),
       TEST_REF(a_wall_end_behind_where_the_leg_began_is_the_door_just_left),
-      TEST_REF(a_straight_leg_is_trued_up_by_the_walls_beside));
+      TEST_REF(a_straight_leg_is_trued_up_by_the_walls_beside),
+      TEST_REF(every_straight_leg_of_the_explorer_is_trued_up_by_the_walls_beside));
