@@ -886,6 +886,114 @@ TEST(backed_up_to_a_wall_read_folded_back)
     }
 }
 
+/* The whole firmware as built by default (no fold-back probe), its back to
+ * a wall a rear ranger reads within the fold-back span (folded back: the
+ * rear corner 6-19 mm off), facing away from it or turned up to 20 degrees
+ * either way: before any turn it drives straight forward the rear fold
+ * move's 45 mm, and the body never reaches the wall while it orients.
+ * Without the move the sweep's turn swings a rear corner out 41 mm onto it
+ * (hallway start seed 57, docs/robustness.md). */
+TEST(a_rear_corner_read_folded_back_moves_forward_before_the_turn)
+{
+    ffr_config_t cfg;
+    float gap, th;
+    int cases = 0;
+    ffr_config_default(&cfg);
+    if (FFR_HOME_FOLD_MM > 0.0f) {
+        /* with the probe on, the probe does this (backed_up_to_a_wall_read_folded_back) */
+        CHECK(FFR_HOME_FOLD_MM > 0.0f);
+        return;
+    }
+    for (gap = 6.0f; gap <= 20.0f; gap += 2.0f) {
+        for (th = PI_F - 20.0f * FFR_DEG; th <= PI_F + 20.1f * FFR_DEG; th += 5.0f * FFR_DEG) {
+            rig_walls_t w = {2000.0f, -2000.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+            rig_t r;
+            float ir[FFR_IR_COUNT];
+            float c = ffr_cosf(th), s = ffr_sinf(th);
+            float x0, y0, straight = -1.0f;
+            int i, clear = 1, in_span = 0;
+            w.ahead_x = -100.0f * c + 100.0f * ffr_absf(s) + gap; /* the rear corners' farthest x, plus the gap */
+            readings_folded(&cfg, &w, 0.0f, 0.0f, th, ir);
+            for (i = FFR_IR_LR; i <= FFR_IR_RR; ++i) {
+                in_span |= ir[i] > cfg.ir_min_mm + 0.5f && ir[i] <= FFR_FOLD_MAX_MM;
+            }
+            if (!in_span) {
+                continue; /* read at the span's bottom (near as it is) or above the span: other rules */
+            }
+            ++cases;
+            rig_init(&r, &cfg);
+            r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
+            r.st.odo.heading_rad = th;
+            r.in.start = 1;
+            x0 = r.st.odo.x_mm;
+            y0 = r.st.odo.y_mm;
+            for (i = 0; i < 1500; ++i) {
+                readings_folded(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+                feed(&r, &cfg, ir);
+                rig_tick(&r);
+                if (straight < 0.0f && ffr_absf(r.st.odo.heading_rad - th) > 2.0f * FFR_DEG) {
+                    /* the first turn: how far it went straight before it */
+                    straight = ffr_sqrtf((r.st.odo.x_mm - x0) * (r.st.odo.x_mm - x0) +
+                                         (r.st.odo.y_mm - y0) * (r.st.odo.y_mm - y0));
+                }
+                if (r.out.state != FFR_ST_ORIENT && i > 2) {
+                    break;
+                }
+                clear &= body_clear(&w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+            }
+            CHECK(r.out.state == FFR_ST_FOLLOW);
+            CHECK(clear);
+            CHECK(straight >= 40.0f);
+        }
+    }
+    CHECK(cases >= 10); /* the span is reached for many of these poses */
+}
+
+/* After the rear fold move, a rear ranger it moved away from whose reading
+ * did not grow was folded back: still reading within the fold-back span or
+ * at its bottom, it reads the wall the move left behind, and is no reason
+ * for another move (taken as read, a datasheet part at its span's bottom
+ * walked the robot on into the middle hallway's mouth: held-out +-2.5 cm
+ * jitter start seed 51, docs/robustness.md). The same reading with no such
+ * move before it is a wall near the rear corner: an escape. */
+TEST(after_the_rear_fold_move_a_reading_that_did_not_grow_is_the_wall_left_behind)
+{
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT];
+    rig_t r;
+    int folded_before;
+    ffr_config_default(&cfg);
+    if (FFR_HOME_FOLD_MM > 0.0f) {
+        CHECK(FFR_HOME_FOLD_MM > 0.0f); /* the move is off with the probe on */
+        return;
+    }
+    for (folded_before = 0; folded_before <= 1; ++folded_before) {
+        rig_init(&r, &cfg);
+        rig_no_walls(&cfg, ir);
+        ir[FFR_IR_LR] = cfg.ir_min_mm; /* the left rear ranger at its span's bottom */
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+        ffr_orient_begin(&r.st);
+        r.st.started = 1;
+        if (folded_before) {
+            /* as the move's end leaves it: 45 mm forward made, the left rear
+             * ranger read 120 mm when it began */
+            r.st.orient.escapes = 1u;
+            r.st.orient.leg = 6u; /* LEG_FOLD */
+            r.st.orient.probed = (uint8_t)(1u << FFR_IR_LR);
+            r.st.orient.probe_mm[FFR_IR_LR] = 120.0f;
+        }
+        CHECK(ffr_orient_step(&r.st) == 0);
+        if (folded_before) {
+            CHECK(r.st.orient.phase == 0u); /* PH_SWEEP: room to turn */
+            CHECK(r.st.orient.escapes == 1u); /* no move more */
+        } else {
+            CHECK(r.st.orient.phase == 8u); /* PH_ESCAPE */
+            CHECK(r.st.orient.escapes == 1u);
+        }
+    }
+}
+
 /* The aim's band narrows with the distance ahead: the end of a side wall
  * 48 cm ahead placed 10.5 cm off the axis by the sweep's heading error (a
  * realistic robot at the home circle: the end of room 1's east wall) does
@@ -1349,6 +1457,8 @@ SUITE(home_orient,
       TEST_REF(a_reading_that_may_be_folded_back_counts_as_near),
       TEST_REF(a_short_move_tells_folded_back_from_far),
       TEST_REF(backed_up_to_a_wall_read_folded_back),
+      TEST_REF(a_rear_corner_read_folded_back_moves_forward_before_the_turn),
+      TEST_REF(after_the_rear_fold_move_a_reading_that_did_not_grow_is_the_wall_left_behind),
       TEST_REF(a_far_wall_end_beside_the_way_does_not_close_it),
       TEST_REF(the_front_shut_straight_back_before_the_s),
       TEST_REF(a_wall_line_in_the_sweep_brakes_at_once),
