@@ -93,6 +93,9 @@
  * to spare (chosen: 60 put seed 51 of the held-out +-2.5 cm jitter row in
  * the middle hallway's mouth, and the aim took it; docs/robustness.md) */
 #define REAR_FOLD_MOVE_MM 45.0f
+/* a rear reading this much shorter after the move was folded back (chosen:
+ * above the rangers' noise at 10-16 cm, a few mm) */
+#define FOLD_SHRINK_MM 4.0f
 #define ESCAPE_SPEED_MM_S 120.0f  /* chosen: slow, so a wall unseen costs no bump  */
 #define PROBE_GROW_MM 8.0f        /* a reading grown this much on a move away: no fold-back */
 #define PROBE_MM 15.0f            /* the probe for fold-back: this far, straight (chosen) */
@@ -958,12 +961,19 @@ static int clear_step(ffr_state_t *st)
     float need = ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM;
     float d, nx, ny, mx, my, d2, nx2, ny2, ir[FFR_IR_COUNT];
     uint8_t suspects, grown;
-    int i;
+    int i, found;
     grown = ffr_orient_probe_trust(cfg, o->probed, o->probe_mm, st->ir_mm);
     if (o->leg == LEG_FOLD) {
-        /* after the rear fold move: a rear ranger whose reading did not grow
-         * as the robot moved away was folded back */
-        o->folded = (uint8_t)(o->folded | (o->probed & ~grown));
+        /* after the rear fold move: a rear ranger whose reading dropped to
+         * its span's bottom or shrank as the robot moved away was folded
+         * back (a wall as far as read recedes; one along the move, read by
+         * the ranger's slanted beam, reads the same: neither is folded) */
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            if ((o->probed >> i) & 1 && ffr_ir_valid(cfg, st->ir_mm[i]) &&
+                (st->ir_mm[i] <= cfg->ir_min_mm + 0.5f || st->ir_mm[i] < o->probe_mm[i] - FOLD_SHRINK_MM)) {
+                o->folded = (uint8_t)(o->folded | (1 << i));
+            }
+        }
         o->leg = 0u;
     }
     o->trusted = (uint8_t)(o->trusted | grown);
@@ -990,16 +1000,19 @@ static int clear_step(ffr_state_t *st)
      * be folded back (before the probe), nor through one seen to be (after
      * it); two the probe could not tell (a wall along the move) may be one
      * wall's */
-    if (ffr_orient_clearance_fold(cfg, &st->ir_geom, ir, 0u, o->probe_done ? 0u : suspects,
-                                  (uint8_t)(o->probe_done ? suspects & o->folded : suspects), &d2, &nx2, &ny2) &&
-        d2 < need) {
+    found = ffr_orient_clearance_fold(cfg, &st->ir_geom, ir, 0u, o->probe_done ? 0u : suspects,
+                                      (uint8_t)(o->probe_done ? suspects & o->folded : suspects), &d2, &nx2, &ny2);
+    if (found && d2 < need) {
         /* a wall near as read: away from it */
         d = d2;
         nx = nx2;
         ny = ny2;
-    } else if (!ffr_orient_clearance_fold(cfg, &st->ir_geom, ir, suspects, 0u, suspects, &d, &nx, &ny) ||
+    } else if (suspects == 0u ||
+               !ffr_orient_clearance_fold(cfg, &st->ir_geom, ir, suspects, 0u, suspects, &d, &nx, &ny) ||
                d >= need) {
-        return 1; /* not near even if folded back */
+        /* not near even if folded back (with no suspects that is the same
+         * wall as above: not worked out twice, a tick's budget) */
+        return 1;
     } else if (!o->probe_done) {
         /* near only if a reading is folded back: a probe tells which first
          * (once per look: away from the nearest such wall) */
@@ -1015,6 +1028,9 @@ static int clear_step(ffr_state_t *st)
         return 0;
     }
     start_escape(st, need, d, nx, ny);
+    if (o->reverse && FFR_HOME_FOLD_MM <= 0.0f) {
+        o->folded = 0u; /* backing toward the wall the fold move left: its rangers read again */
+    }
     /* the rangers this move goes away from: their readings tell fold-back */
     if (o->leg == 0u || o->leg == LEG_BACK) {
         mx = o->reverse ? -1.0f : 1.0f;

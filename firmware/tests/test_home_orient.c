@@ -950,46 +950,60 @@ TEST(a_rear_corner_read_folded_back_moves_forward_before_the_turn)
 }
 
 /* After the rear fold move, a rear ranger it moved away from whose reading
- * did not grow was folded back: still reading within the fold-back span or
- * at its bottom, it reads the wall the move left behind, and is no reason
- * for another move (taken as read, a datasheet part at its span's bottom
- * walked the robot on into the middle hallway's mouth: held-out +-2.5 cm
- * jitter start seed 51, docs/robustness.md). The same reading with no such
- * move before it is a wall near the rear corner: an escape. */
+ * dropped to its span's bottom (or shrank) was folded back: it reads the
+ * wall the move left behind, and is no reason for another move (taken as
+ * read, a datasheet part at its span's bottom walked the robot on into the
+ * middle hallway's mouth: held-out +-2.5 cm jitter start seed 51,
+ * docs/robustness.md). The same reading with no such move before it is a
+ * wall near the rear corner: an escape. A reading that grew is a wall as far
+ * as read, and one that stayed is a wall along the move: both count. */
+enum { FOLD_NONE, FOLD_DROPPED, FOLD_GREW, FOLD_ALONG };
+static void after_fold_move(rig_t *r, const ffr_config_t *cfg, int kind)
+{
+    float ir[FFR_IR_COUNT];
+    rig_init(r, cfg);
+    rig_no_walls(cfg, ir);
+    if (kind == FOLD_NONE || kind == FOLD_DROPPED) {
+        ir[FFR_IR_LR] = cfg->ir_min_mm; /* the left rear ranger at its span's bottom */
+    } else if (kind == FOLD_GREW) {
+        ir[FFR_IR_LR] = ir[FFR_IR_RR] = 125.0f; /* a wall behind, 168 mm behind the axle */
+    } else {
+        ir[FFR_IR_LF] = ir[FFR_IR_LR] = 110.0f; /* a wall along the left side, 148 mm off the axis */
+    }
+    feed(r, cfg, ir);
+    rig_tick(r);
+    ffr_orient_begin(&r->st);
+    r->st.started = 1;
+    if (kind != FOLD_NONE) {
+        /* as the move's end leaves it: 45 mm forward made */
+        r->st.orient.escapes = 1u;
+        r->st.orient.leg = 6u; /* LEG_FOLD */
+        r->st.orient.probed = (uint8_t)((1u << FFR_IR_LR) | (kind == FOLD_GREW ? 1u << FFR_IR_RR : 0u));
+        r->st.orient.probe_mm[FFR_IR_LR] = kind == FOLD_DROPPED ? 120.0f : 110.0f;
+        r->st.orient.probe_mm[FFR_IR_RR] = 110.0f;
+    }
+}
+
 TEST(after_the_rear_fold_move_a_reading_that_did_not_grow_is_the_wall_left_behind)
 {
     ffr_config_t cfg;
-    float ir[FFR_IR_COUNT];
     rig_t r;
-    int folded_before;
+    int kind;
     ffr_config_default(&cfg);
     if (FFR_HOME_FOLD_MM > 0.0f) {
         CHECK(FFR_HOME_FOLD_MM > 0.0f); /* the move is off with the probe on */
         return;
     }
-    for (folded_before = 0; folded_before <= 1; ++folded_before) {
-        rig_init(&r, &cfg);
-        rig_no_walls(&cfg, ir);
-        ir[FFR_IR_LR] = cfg.ir_min_mm; /* the left rear ranger at its span's bottom */
-        feed(&r, &cfg, ir);
-        rig_tick(&r);
-        ffr_orient_begin(&r.st);
-        r.st.started = 1;
-        if (folded_before) {
-            /* as the move's end leaves it: 45 mm forward made, the left rear
-             * ranger read 120 mm when it began */
-            r.st.orient.escapes = 1u;
-            r.st.orient.leg = 6u; /* LEG_FOLD */
-            r.st.orient.probed = (uint8_t)(1u << FFR_IR_LR);
-            r.st.orient.probe_mm[FFR_IR_LR] = 120.0f;
-        }
+    for (kind = FOLD_NONE; kind <= FOLD_ALONG; ++kind) {
+        after_fold_move(&r, &cfg, kind);
         CHECK(ffr_orient_step(&r.st) == 0);
-        if (folded_before) {
+        if (kind == FOLD_DROPPED) {
             CHECK(r.st.orient.phase == 0u); /* PH_SWEEP: room to turn */
             CHECK(r.st.orient.escapes == 1u); /* no move more */
         } else {
-            CHECK(r.st.orient.phase == 8u); /* PH_ESCAPE */
-            CHECK(r.st.orient.escapes == 1u);
+            /* a wall within the turning radius + 20 mm: PH_ESCAPE, away from it */
+            CHECK(r.st.orient.phase == 8u);
+            CHECK(r.st.orient.escapes == (kind == FOLD_NONE ? 1u : 2u));
         }
     }
 }
