@@ -925,15 +925,16 @@ static int rear_fold_move(ffr_state_t *st)
 {
     ffr_home_orient_t *o = &st->orient;
     const ffr_config_t *cfg = &st->cfg;
-    uint8_t rear = 0u;
+    uint8_t rear;
     int i;
     if (FFR_HOME_FOLD_MM > 0.0f || o->escapes > 0u) {
         return 0;
     }
+    /* the fold-back suspects (ffr_orient_fold_suspects) among the rear rangers */
+    rear = ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_FOLD_MAX_MM);
     for (i = 0; i < FFR_IR_COUNT; ++i) {
-        if (st->ir_geom.beam_cos[i] < -0.5f && st->ir_mm[i] > cfg->ir_min_mm + 0.5f &&
-            st->ir_mm[i] <= FFR_FOLD_MAX_MM) {
-            rear = (uint8_t)(rear | (1 << i));
+        if (st->ir_geom.beam_cos[i] >= -0.5f) {
+            rear = (uint8_t)(rear & ~(1u << i));
         }
     }
     if (rear == 0u || end_room(st, 0, BAND_MARGIN_MM, 0u) < cfg->body_front_mm + ESCAPE_FREE_MM + REAR_FOLD_MOVE_MM) {
