@@ -386,6 +386,13 @@ int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const 
  * no line through two rangers both in `not_both`, nor through one in
  * `not_any` unless the other reads at its span's bottom */
 #define FFR_FOLD_MAX_MM 160.0f
+/* A front corner ranger's beam leaves the body through its side 42 mm from
+ * the ranger ((half width - 70 mm) / sin 45 degrees, the default layout): a
+ * wall folded back nearer than that would be inside the body, and one that
+ * far reads 125 mm through the GP2D12's curve (its fold-back branch: 2,026
+ * mV; tests/sim_plant/test_gp2d12.py). A reading above it is a wall as far
+ * as read (ffr_orient_sweep_side). */
+#define FFR_FOLD_CORNER_MAX_MM 125.0f
 /* the fold-back rules at the start built in: readings up to this many mm
  * are suspects (FFR_FOLD_MAX_MM when on); 0, the default: off, the
  * orientation as before (docs/firmware.md: the stress sweep lost missions) */

@@ -709,11 +709,24 @@ int ffr_orient_sweep_side(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const
      * swings off it and only the rear corner (141 mm) swings toward it;
      * turning toward it, the front corner meets it first */
     float d, nx, ny;
-    if (!ffr_orient_clearance(cfg, g, ir_mm, &d, &nx, &ny) ||
-        d >= ffr_orient_turn_radius_mm(cfg) + SIDE_MARGIN_MM || ffr_absf(ny) < 0.5f) {
-        return 0;
+    uint8_t s;
+    int i, l = 0, r = 0;
+    if (ffr_orient_clearance(cfg, g, ir_mm, &d, &nx, &ny) && d < ffr_orient_turn_radius_mm(cfg) + SIDE_MARGIN_MM) {
+        return ffr_absf(ny) < 0.5f ? 0 : ny < 0.0f ? 1 : -1;
     }
-    return ny < 0.0f ? 1 : -1;
+    /* none near as read, but a front corner ranger reading within its
+     * fold-back span (FFR_FOLD_CORNER_MAX_MM): its wall may be 42-80 mm off it,
+     * the front corner on it. Away from that side, if the other front
+     * corner does not read so too (start circle seeds 629, 635: turning
+     * toward it, the corner met the wall at once) */
+    s = ffr_orient_fold_suspects(cfg, ir_mm, FFR_FOLD_CORNER_MAX_MM);
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if ((s >> i) & 1 && g->beam_cos[i] > 0.5f) {
+            l |= g->beam_sin[i] > 0.5f;
+            r |= g->beam_sin[i] < -0.5f;
+        }
+    }
+    return l == r ? 0 : l ? -1 : 1;
 }
 
 void ffr_orient_begin(ffr_state_t *st)

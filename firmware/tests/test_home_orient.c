@@ -1198,6 +1198,65 @@ TEST(the_sweep_turns_away_from_a_wall_beside)
     }
 }
 
+TEST(the_sweep_turns_away_from_a_front_corner_read_folded_back)
+{
+    /* nothing near as read, but a front corner ranger reading within the
+     * fold-back span: its wall may be 3-5.5 cm off it, the front corner on
+     * it. The sweep turns away from that side, whatever home_wall_side
+     * would pick (turning toward it, that corner meets the wall at once:
+     * start circle seeds 629 and 635, docs/robustness.md) */
+    ffr_config_t cfg;
+    ffr_ir_geom_t g;
+    float ir[FFR_IR_COUNT], gap, th;
+    int cases = 0;
+    ffr_config_default(&cfg);
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_RF] = 120.0f;
+    CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == 1);
+    ir[FFR_IR_RF] = FFR_FOLD_CORNER_MAX_MM + 1.0f; /* above the span: as read, clear */
+    CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == 0);
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_LF] = 120.0f;
+    CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == -1);
+    ir[FFR_IR_RF] = 120.0f; /* both: no side to prefer */
+    CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == 0);
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_RR] = 120.0f; /* a rear ranger: the rear fold move's case */
+    CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == 0);
+    /* the whole firmware: a wall on the right, the body heading into it at
+     * 20-35 degrees, its front right corner 1-7 mm off; home_wall_side
+     * right (a right sweep otherwise). It leaves ORIENT with no contact */
+    for (th = -20.0f * FFR_DEG; th >= -35.1f * FFR_DEG; th -= 5.0f * FFR_DEG) {
+        for (gap = 1.0f; gap <= 7.0f; gap += 2.0f) {
+            rig_walls_t w = {2000.0f, 0.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+            rig_t r;
+            int i, clear = 1;
+            w.right_y = 120.0f * ffr_sinf(th) - 100.0f * ffr_cosf(th) - gap; /* the front right corner's y */
+            readings_folded(&cfg, &w, 0.0f, 0.0f, th, ir);
+            if (!(ir[FFR_IR_RF] > cfg.ir_min_mm + 0.5f && ir[FFR_IR_RF] <= FFR_FOLD_CORNER_MAX_MM)) {
+                continue;
+            }
+            ++cases;
+            rig_init(&r, &cfg);
+            r.st.cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+            r.st.odo.heading_rad = th;
+            r.in.start = 1;
+            for (i = 0; i < 1500; ++i) {
+                readings_folded(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+                feed(&r, &cfg, ir);
+                rig_tick(&r);
+                if (r.out.state != FFR_ST_ORIENT && i > 2) {
+                    break;
+                }
+                clear &= body_clear(&w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+            }
+            CHECK(r.out.state == FFR_ST_FOLLOW);
+            CHECK(clear);
+        }
+    }
+    CHECK(cases >= 8);
+}
+
 TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
 {
     /* a wall 140 mm off on the right: its corner and rear rangers read
@@ -1477,6 +1536,7 @@ SUITE(home_orient,
       TEST_REF(the_front_shut_straight_back_before_the_s),
       TEST_REF(a_wall_line_in_the_sweep_brakes_at_once),
       TEST_REF(the_sweep_turns_away_from_a_wall_beside),
+      TEST_REF(the_sweep_turns_away_from_a_front_corner_read_folded_back),
       TEST_REF(a_wall_beside_below_the_span_is_no_end_of_the_s),
       TEST_REF(room_to_turn_again_after_the_shift),
       TEST_REF(a_straight_escape_stops_short_of_a_wall_across_at_a_slant),

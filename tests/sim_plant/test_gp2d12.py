@@ -48,6 +48,26 @@ def test_fold_back_below_10cm():
     assert distance_to_mv(0.20) < distance_to_mv(0.05) < distance_to_mv(0.10)
 
 
+def test_a_wall_at_the_body_side_reads_125_mm_on_a_front_corner_ranger(robot):
+    """home_orient.c's FOLD_CORNER_MAX_MM: a front corner ranger of the default robot reads a
+    wall folded back (42-80 mm off it, beyond the body's side) at most ~125 mm; a wall nearer
+    than 42 mm would be inside the body. Through ir_calibration.c's curve (k = 332,000 mV mm,
+    offset 15 mV, d0 = 40 mm), as the firmware reads it."""
+    ir = robot.ir["LF"]
+    exit_m = (robot.body.width / 2.0 - ir.y) / math.sin(math.radians(ir.angle_deg))
+    assert exit_m * 1000.0 == pytest.approx(42.4, abs=0.05)
+
+    def firmware_mm(mv: float) -> float:
+        return max(332000.0 / (mv - 15.0) - 40.0, 100.0)
+
+    assert distance_to_mv(exit_m) == pytest.approx(2026.0, abs=1.0)
+    assert firmware_mm(distance_to_mv(exit_m)) == pytest.approx(125.0, abs=0.5)
+    # the whole fold-back branch beyond the side reads no more than that
+    fold = [firmware_mm(distance_to_mv(d)) for d in np.linspace(exit_m, 0.08, 50)]
+    assert max(fold) <= 125.5
+    assert min(fold) == 100.0
+
+
 def test_far_tail_falls_to_floor():
     assert distance_to_mv(1.0) < distance_to_mv(0.8)
     assert 250.0 <= distance_to_mv(4.0) <= 400.0
