@@ -618,6 +618,20 @@ uint8_t ffr_orient_fold_suspects(const ffr_config_t *cfg, const float ir_mm[FFR_
     return m;
 }
 
+/* the rangers whose beam points within a cone about the unit vector (ux,
+ * uy) in the body frame: beam . u > min_dot (bit i: ranger i) */
+static uint8_t beams_toward(const ffr_ir_geom_t *g, float ux, float uy, float min_dot)
+{
+    uint8_t m = 0u;
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if (g->beam_cos[i] * ux + g->beam_sin[i] * uy > min_dot) {
+            m = (uint8_t)(m | (1 << i));
+        }
+    }
+    return m;
+}
+
 /* pairs of rangers that see one wall: a side's two, the front's three, the rear's two */
 static const uint8_t WALL_PAIRS[6][2] = {{FFR_IR_LF, FFR_IR_LR}, {FFR_IR_RF, FFR_IR_RR}, {FFR_IR_CF, FFR_IR_LF},
                                          {FFR_IR_CF, FFR_IR_RF}, {FFR_IR_LF, FFR_IR_RF}, {FFR_IR_LR, FFR_IR_RR}};
@@ -708,9 +722,11 @@ int ffr_orient_sweep_side(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const
      * Turning away, the front corner on its side (156 mm from the axle)
      * swings off it and only the rear corner (141 mm) swings toward it;
      * turning toward it, the front corner meets it first */
+    /* the front corners' beams: within 15 degrees of 45 degrees either side */
+    static const float corner = 0.70710678f, within = 0.96592583f;
     float d, nx, ny;
     uint8_t s;
-    int i, l = 0, r = 0;
+    int l, r;
     if (ffr_orient_clearance(cfg, g, ir_mm, &d, &nx, &ny) && d < ffr_orient_turn_radius_mm(cfg) + SIDE_MARGIN_MM) {
         return ffr_absf(ny) < 0.5f ? 0 : ny < 0.0f ? 1 : -1;
     }
@@ -720,12 +736,8 @@ int ffr_orient_sweep_side(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const
      * corner does not read so too (start circle seeds 629, 635: turning
      * toward it, the corner met the wall at once) */
     s = ffr_orient_fold_suspects(cfg, ir_mm, FFR_FOLD_CORNER_MAX_MM);
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        if ((s >> i) & 1 && g->beam_cos[i] > 0.5f) {
-            l |= g->beam_sin[i] > 0.5f;
-            r |= g->beam_sin[i] < -0.5f;
-        }
-    }
+    l = (s & beams_toward(g, corner, corner, within)) != 0u;
+    r = (s & beams_toward(g, corner, -corner, within)) != 0u;
     return l == r ? 0 : l ? -1 : 1;
 }
 
@@ -881,9 +893,8 @@ static int escape_free(const ffr_state_t *st);
 static void probe_step(ffr_state_t *st)
 {
     ffr_home_orient_t *o = &st->orient;
-    uint8_t genuine = 0u, folded = 0u, ahead = 0u;
+    uint8_t genuine = 0u, folded = 0u, ahead;
     float left = o->goal_mm - st->odo.dist_mm;
-    int i;
     if (o->leg == 4u) {
         /* nothing folded back: back to where it stood (the sweep from there
          * sees what it would have seen without the probe) */
@@ -899,11 +910,7 @@ static void probe_step(ffr_state_t *st)
     }
     ffr_orient_probe_tell(&st->cfg, &st->ir_geom, o->reverse & 1u, o->probed, o->probe_mm, st->ir_mm, &genuine,
                           &folded);
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        if ((o->reverse ? -1.0f : 1.0f) * st->ir_geom.beam_cos[i] > 0.3f) {
-            ahead = (uint8_t)(ahead | (1 << i));
-        }
-    }
+    ahead = beams_toward(&st->ir_geom, o->reverse ? -1.0f : 1.0f, 0.0f, 0.3f);
     if (left > 0.0f && !(folded & ahead) && escape_free(st)) {
         float v = ffr_stopping_speed(left, PROBE_SPEED_MM_S);
         st->cmd_v_mm_s = o->reverse ? -v : v;
@@ -943,13 +950,9 @@ static int rear_fold_move(ffr_state_t *st)
     if (FFR_HOME_FOLD_MM > 0.0f || o->escapes > 0u) {
         return 0;
     }
-    /* the fold-back suspects (ffr_orient_fold_suspects) among the rear rangers */
-    rear = ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_FOLD_MAX_MM);
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        if (st->ir_geom.beam_cos[i] >= -0.5f) {
-            rear = (uint8_t)(rear & ~(1u << i));
-        }
-    }
+    /* the fold-back suspects among the rear rangers (beams within 60 degrees of straight back) */
+    rear = (uint8_t)(ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_FOLD_MAX_MM) &
+                     beams_toward(&st->ir_geom, -1.0f, 0.0f, 0.5f));
     if (rear == 0u || end_room(st, 0, BAND_MARGIN_MM, 0u) < cfg->body_front_mm + ESCAPE_FREE_MM + REAR_FOLD_MOVE_MM) {
         return 0;
     }

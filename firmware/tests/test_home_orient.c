@@ -731,6 +731,42 @@ static void readings_folded(const ffr_config_t *cfg, const rig_walls_t *w, float
     }
 }
 
+/* The whole firmware orienting from heading th0 among the walls w, read
+ * folded back (readings_folded), home_wall_side `side`, until it leaves
+ * ORIENT (or 1500 ticks): 1 if the body never met a wall on the way; r's
+ * state is where it ended. `straight` (NULL: not wanted): how far it went
+ * straight before its first turn, -1 if it never turned */
+static int orient_folded(rig_t *r, const ffr_config_t *cfg, const rig_walls_t *w, float th0, uint8_t side,
+                         float *straight)
+{
+    float ir[FFR_IR_COUNT];
+    float x0, y0;
+    int i, clear = 1;
+    rig_init(r, cfg);
+    r->st.cfg.home_wall_side = side;
+    r->st.odo.heading_rad = th0;
+    r->in.start = 1;
+    x0 = r->st.odo.x_mm;
+    y0 = r->st.odo.y_mm;
+    if (straight) {
+        *straight = -1.0f;
+    }
+    for (i = 0; i < 1500; ++i) {
+        readings_folded(cfg, w, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad, ir);
+        feed(r, cfg, ir);
+        rig_tick(r);
+        if (straight && *straight < 0.0f && ffr_absf(r->st.odo.heading_rad - th0) > 2.0f * FFR_DEG) {
+            *straight = ffr_sqrtf((r->st.odo.x_mm - x0) * (r->st.odo.x_mm - x0) +
+                                  (r->st.odo.y_mm - y0) * (r->st.odo.y_mm - y0));
+        }
+        if (r->out.state != FFR_ST_ORIENT && i > 2) {
+            break;
+        }
+        clear &= body_clear(w, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad);
+    }
+    return clear;
+}
+
 TEST(a_reading_that_may_be_folded_back_counts_as_near)
 {
     ffr_config_t cfg;
@@ -858,28 +894,15 @@ TEST(backed_up_to_a_wall_read_folded_back)
             /* a hallway 460 mm wide along x, closed at x = ahead_x; the robot's rear toward it */
             rig_walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
             rig_t r;
-            float ir[FFR_IR_COUNT];
             float c = ffr_cosf(th), s = ffr_sinf(th);
-            int i, clear = 1;
+            int clear;
             /* the rear corners' farthest x: the wall that far plus the gap */
             float rear = -100.0f * c + 100.0f * ffr_absf(s);
             w.ahead_x = rear + gap;
             if (!body_clear(&w, 0.0f, 0.0f, th)) {
                 continue;
             }
-            rig_init(&r, &cfg);
-            r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
-            r.st.odo.heading_rad = th;
-            r.in.start = 1;
-            for (i = 0; i < 1500; ++i) {
-                readings_folded(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
-                feed(&r, &cfg, ir);
-                rig_tick(&r);
-                if (r.out.state != FFR_ST_ORIENT && i > 2) {
-                    break;
-                }
-                clear &= body_clear(&w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
-            }
+            clear = orient_folded(&r, &cfg, &w, th, FFR_HOME_WALL_ANY, NULL);
             CHECK(r.out.state == FFR_ST_FOLLOW);
             CHECK(clear);
         }
@@ -910,8 +933,8 @@ TEST(a_rear_corner_read_folded_back_moves_forward_before_the_turn)
             rig_t r;
             float ir[FFR_IR_COUNT];
             float c = ffr_cosf(th), s = ffr_sinf(th);
-            float x0, y0, straight = -1.0f;
-            int i, clear = 1, in_span = 0;
+            float straight;
+            int i, clear, in_span = 0;
             w.ahead_x = -100.0f * c + 100.0f * ffr_absf(s) + gap; /* the rear corners' farthest x, plus the gap */
             readings_folded(&cfg, &w, 0.0f, 0.0f, th, ir);
             for (i = FFR_IR_LR; i <= FFR_IR_RR; ++i) {
@@ -921,26 +944,7 @@ TEST(a_rear_corner_read_folded_back_moves_forward_before_the_turn)
                 continue; /* read at the span's bottom (near as it is) or above the span: other rules */
             }
             ++cases;
-            rig_init(&r, &cfg);
-            r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
-            r.st.odo.heading_rad = th;
-            r.in.start = 1;
-            x0 = r.st.odo.x_mm;
-            y0 = r.st.odo.y_mm;
-            for (i = 0; i < 1500; ++i) {
-                readings_folded(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
-                feed(&r, &cfg, ir);
-                rig_tick(&r);
-                if (straight < 0.0f && ffr_absf(r.st.odo.heading_rad - th) > 2.0f * FFR_DEG) {
-                    /* the first turn: how far it went straight before it */
-                    straight = ffr_sqrtf((r.st.odo.x_mm - x0) * (r.st.odo.x_mm - x0) +
-                                         (r.st.odo.y_mm - y0) * (r.st.odo.y_mm - y0));
-                }
-                if (r.out.state != FFR_ST_ORIENT && i > 2) {
-                    break;
-                }
-                clear &= body_clear(&w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
-            }
+            clear = orient_folded(&r, &cfg, &w, th, FFR_HOME_WALL_ANY, &straight);
             CHECK(r.out.state == FFR_ST_FOLLOW);
             CHECK(clear);
             CHECK(straight >= 40.0f);
@@ -1230,26 +1234,14 @@ TEST(the_sweep_turns_away_from_a_front_corner_read_folded_back)
         for (gap = 1.0f; gap <= 7.0f; gap += 2.0f) {
             rig_walls_t w = {2000.0f, 0.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
             rig_t r;
-            int i, clear = 1;
+            int clear;
             w.right_y = 120.0f * ffr_sinf(th) - 100.0f * ffr_cosf(th) - gap; /* the front right corner's y */
             readings_folded(&cfg, &w, 0.0f, 0.0f, th, ir);
             if (!(ir[FFR_IR_RF] > cfg.ir_min_mm + 0.5f && ir[FFR_IR_RF] <= FFR_FOLD_CORNER_MAX_MM)) {
                 continue;
             }
             ++cases;
-            rig_init(&r, &cfg);
-            r.st.cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
-            r.st.odo.heading_rad = th;
-            r.in.start = 1;
-            for (i = 0; i < 1500; ++i) {
-                readings_folded(&cfg, &w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
-                feed(&r, &cfg, ir);
-                rig_tick(&r);
-                if (r.out.state != FFR_ST_ORIENT && i > 2) {
-                    break;
-                }
-                clear &= body_clear(&w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
-            }
+            clear = orient_folded(&r, &cfg, &w, th, FFR_HOME_WALL_RIGHT, NULL);
             CHECK(r.out.state == FFR_ST_FOLLOW);
             CHECK(clear);
         }
