@@ -342,6 +342,12 @@ float ffr_orient_square(const ffr_home_orient_t *o);
 float ffr_orient_free_mm(const ffr_home_orient_t *o, float band_mm, float dir, float cx, float cy);
 /* The same toward dir0 + k * 90 degrees, k = 0..3, in one pass. */
 void ffr_orient_free4(const ffr_home_orient_t *o, float band_mm, float dir0, float cx, float cy, float free_mm[4]);
+/* The centre's view of bins in the walls' frame (ffr_orient_to_walls), from
+ * (cu, cv) in that frame: free_mm[k] toward dir0 + k * 90 degrees, the
+ * nearest hit within CENTRE_BAND_MM of the axis, or with none there the
+ * nearer of the nearest hits either side of it within 15 degrees when they
+ * are as far along it (a wall across it); 65535: neither. */
+void ffr_orient_across4(const ffr_home_orient_t *o, float cu, float cv, float free_mm[4]);
 /* The route's first direction: k (0..3) of the four directions square to
  * the walls, dir0 + k * 90 degrees, by the home_wall_side rule; -1 none open. */
 int ffr_orient_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
@@ -360,6 +366,9 @@ int ffr_orient_aim(const ffr_home_orient_t *o, const ffr_config_t *cfg, float di
  * of two), along each of the two square axes. */
 void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
                        float *dx, float *dy);
+/* the same of bins already in the walls' frame, (cx, cy) in odometry's (the firmware's tick) */
+void ffr_orient_centre_walls(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
+                             float *dx, float *dy);
 /* Record one tick's hits (the sweep). */
 void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_odometry_t *odo,
                        const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT]);
@@ -369,9 +378,9 @@ void ffr_orient_after_shift(ffr_state_t *st);
 int ffr_orient_square_wall(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT], float walls,
                            float *dist_mm, float *nx, float *ny);
 /* the body's farthest corner from the axle midpoint (it sweeps this circle turning in place) */
-/* the route's first direction k (as ffr_orient_choose, from where the shift
- * (dx, dy) would end) if that shift is at most skip_mm across it and
- * SHIFT_TOL_MM along it, so not worth making; else -1 */
+/* the route's first direction k (as ffr_orient_aim, bins in the walls'
+ * frame, from where the shift (dx, dy) would end) if that shift is at most
+ * skip_mm across it and SHIFT_TOL_MM along it, so not worth making; else -1 */
 int ffr_orient_skip(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
                     float cy, float dx, float dy, float skip_mm);
 float ffr_orient_turn_radius_mm(const ffr_config_t *cfg);

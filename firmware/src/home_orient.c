@@ -13,9 +13,11 @@
  *   began, tells how far is free in each of the four directions square to
  *   the walls.
  *
- * If a wall straight across one of the square axes, within a hallway's
- * width of the body's side (2 x wall_target_mm + body_half_width_mm from its
- * centre), is not at wall_target_mm (the nearer of two), it
+ * If a wall straight across one of the square axes (a hit near the axis,
+ * or hits as far along it on both sides of it), within a hallway's width of
+ * the body's side (2 x wall_target_mm + body_half_width_mm from its centre,
+ * as far as a ranger may read long), is not at wall_target_mm (the nearer
+ * of two), it
  * first moves square to the walls to stand there (SHIFT_TOL_MM of slack), as
  * the wall following will want: the home circle is wider than the room a
  * hallway leaves beside the body. The route's first direction is then the
@@ -65,6 +67,15 @@
 /* where to stand goes by walls straight across each axis (a band this wide
  * each side), not by a wall's end off to the side at a junction */
 #define CENTRE_BAND_MM 40.0f
+/* ... or a wall across it farther out, whose nearest hits either side of
+ * the axis fall outside that band: the sweep's hits are bins 10 degrees
+ * wide, 80 mm apart on a wall 46 cm off (chosen: within 15 degrees of the
+ * axis, both sides as far along it within ACROSS_TOL_MM) */
+#define ACROSS_CONE 0.26794919f /* tan 15 degrees */
+#define ACROSS_TOL_MM 30.0f
+#ifndef RANGE_LONG_FRAC
+#define RANGE_LONG_FRAC 0.15f
+#endif
 /* the aim's bands: a hit counts in one only if it is there also as far out
  * along its ray as an uncalibrated GP2D12 may read short (its datasheet
  * spread: 0.25..0.55 V at 80 cm, swing +-12.5 %: 20-30 % short at 15-40 cm) */
@@ -558,16 +569,57 @@ int ffr_orient_aim(const ffr_home_orient_t *o, const ffr_config_t *cfg, float di
     return aim_decide(cfg, &w, dir0, heading);
 }
 
-void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
-                       float *dx, float *dy)
+void ffr_orient_across4(const ffr_home_orient_t *o, float cu, float cv, float free_mm[4])
 {
-    float near = 2.0f * cfg->wall_target_mm + cfg->body_half_width_mm;
-    float free_mm[4];
-    int k;
-    *dx = 0.0f;
-    *dy = 0.0f;
+    /* per axis k and side of it (+, -), the nearest hit along k within the
+     * cone: slot 2 k (+) and 2 k + 1 (-) */
+    float cone[8];
+    int b, k;
+    for (k = 0; k < 4; ++k) {
+        free_mm[k] = 65535.0f;
+    }
+    for (k = 0; k < 8; ++k) {
+        cone[k] = 65535.0f;
+    }
+    for (b = 0; b < FFR_ORIENT_BINS; ++b) {
+        /* a bin without a hit is far off both axes (ffr_orient_to_walls): in no band or cone */
+        float u = o->bin_x_mm[b] - cu, v = o->bin_y_mm[b] - cv;
+        float au = ffr_absf(u), av = ffr_absf(v);
+        if (av < CENTRE_BAND_MM || av < ACROSS_CONE * au) {
+            int k0 = u > 0.0f ? 0 : 2, slot = 2 * k0 + (v >= 0.0f ? 0 : 1);
+            if (av < CENTRE_BAND_MM && au < free_mm[k0]) {
+                free_mm[k0] = au;
+            }
+            cone[slot] = au < cone[slot] ? au : cone[slot];
+        }
+        if (au < CENTRE_BAND_MM || au < ACROSS_CONE * av) {
+            int k1 = v > 0.0f ? 1 : 3, slot = 2 * k1 + (u >= 0.0f ? 0 : 1);
+            if (au < CENTRE_BAND_MM && av < free_mm[k1]) {
+                free_mm[k1] = av;
+            }
+            cone[slot] = av < cone[slot] ? av : cone[slot];
+        }
+    }
+    for (k = 0; k < 4; ++k) {
+        /* no hit in the band: a wall across the axis, as far along it on
+         * both sides of it? (a hit in the band is nearer the axis: the
+         * better measure where the wall crosses it) */
+        float p = cone[2 * k], m = cone[2 * k + 1];
+        if (free_mm[k] > 65534.0f && ffr_absf(p - m) < ACROSS_TOL_MM) {
+            free_mm[k] = p < m ? p : m;
+        }
+    }
+}
+
+void ffr_orient_centre_walls(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
+                             float *dx, float *dy)
+{
+    /* a hallway's width from the body's side, as far as a ranger may read long */
+    float near = (2.0f * cfg->wall_target_mm + cfg->body_half_width_mm) * (1.0f + RANGE_LONG_FRAC);
     float c0 = ffr_cosf(dir0), s0 = ffr_sinf(dir0);
-    ffr_orient_free4(o, CENTRE_BAND_MM, dir0, cx, cy, free_mm);
+    float free_mm[4], sk[2];
+    int k;
+    ffr_orient_across4(o, cx * c0 + cy * s0, cy * c0 - cx * s0, free_mm);
     for (k = 0; k < 2; ++k) {
         float a = free_mm[k];
         float b = free_mm[k + 2];
@@ -578,9 +630,18 @@ void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, floa
         } else if (b < near) {
             s = cfg->wall_target_mm - b;
         }
-        *dx += s * (k == 0 ? c0 : -s0);
-        *dy += s * (k == 0 ? s0 : c0);
+        sk[k] = s;
     }
+    *dx = sk[0] * c0 - sk[1] * s0;
+    *dy = sk[0] * s0 + sk[1] * c0;
+}
+
+void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
+                       float *dx, float *dy)
+{
+    ffr_home_orient_t w = *o;
+    ffr_orient_to_walls(&w, dir0);
+    ffr_orient_centre_walls(&w, cfg, dir0, cx, cy, dx, dy);
 }
 
 int ffr_orient_skip(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
@@ -590,7 +651,7 @@ int ffr_orient_skip(const ffr_home_orient_t *o, const ffr_config_t *cfg, float d
      * (from where it stands, a wall's end the shift is for may lie in the
      * body's path): a shift small across it is not worth a turn, a drive
      * and a turn back (the wall following takes it up) */
-    int k = ffr_orient_choose(o, cfg, dir0, heading, cx + dx, cy + dy);
+    int k = ffr_orient_aim(o, cfg, dir0, heading, cx + dx, cy + dy);
     float target, across, along;
     if (k < 0) {
         return -1;
@@ -1445,7 +1506,10 @@ int ffr_orient_step(ffr_state_t *st)
     }
     if (o->phase == PH_CENTRE) {
         float dx, dy, cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
-        ffr_orient_centre(o, cfg, o->dir0_rad, cx, cy, &dx, &dy);
+        /* the bins into the walls' frame, once: the centre reads them so,
+         * and the aim (next tick or after the shift) */
+        ffr_orient_to_walls(o, o->dir0_rad);
+        ffr_orient_centre_walls(o, cfg, o->dir0_rad, cx, cy, &dx, &dy);
         if (FFR_HOME_SKIP_MM > 0.0f && dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
             int k = ffr_orient_skip(o, cfg, o->dir0_rad, st->odo.heading_rad, cx, cy, dx, dy, FFR_HOME_SKIP_MM);
             if (k >= 0) {
@@ -1454,8 +1518,6 @@ int ffr_orient_step(ffr_state_t *st)
                 return 0;
             }
         }
-        /* the aim next tick or after the shift: its bins turned now */
-        ffr_orient_to_walls(o, o->dir0_rad);
         if (dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
             float dir = ffr_atan2f(dy, dx);
             float fwd = nearest(st->odo.heading_rad, dir);

@@ -198,6 +198,68 @@ static void add_stretch(ffr_home_orient_t *o, float x0, float y0, float x1, floa
     }
 }
 
+/* a wall across one of the four axes farther out than the sweep's hits are
+ * dense: the bins nearest the axis are 10 degrees wide, so on a wall 46 cm
+ * off their nearest hits may lie 70-80 mm either side of it, outside the
+ * centre's 40 mm band (fresh +-2.5 cm start seed 199: the robot stayed in
+ * the middle hallway's mouth, the way north shut by its wall's end) */
+TEST(a_far_wall_across_between_the_bins_places_the_robot)
+{
+    ffr_config_t cfg;
+    ffr_home_orient_t o;
+    ffr_odometry_t odo;
+    float dx, dy, reach;
+    ffr_config_default(&cfg);
+    ffr_odometry_reset(&odo);
+    /* where the centre stands a wall across off its near one: 2 wall_target + half width,
+     * as far as a ranger may read long (15 %) */
+    reach = (2.0f * cfg.wall_target_mm + cfg.body_half_width_mm) * 1.15f;
+    /* the south wall 233 mm off; the east one 466 mm off, hit either side of the axis only */
+    ffr_orient_reset(&o, &odo);
+    add_wall(&o, 0.0f, -233.0f, 1.0f, 0.0f);
+    keep_nearest(&o, 466.0f, 78.0f);
+    keep_nearest(&o, 470.0f, -68.0f);
+    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
+    CHECK_NEAR(dx, 466.0f - cfg.wall_target_mm, 5.0f);
+    CHECK_NEAR(dy, 0.0f, 5.0f);
+    /* the same turned by 90 degrees (the axis along v) and seen from off the sweep's centre */
+    ffr_orient_reset(&o, &odo);
+    add_wall(&o, 233.0f, 0.0f, 0.0f, 1.0f);
+    keep_nearest(&o, 78.0f, 466.0f + 30.0f);
+    keep_nearest(&o, -68.0f, 470.0f + 30.0f);
+    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 30.0f, &dx, &dy);
+    CHECK_NEAR(dy, 466.0f - cfg.wall_target_mm, 5.0f);
+    CHECK_NEAR(dx, 0.0f, 5.0f);
+    /* hits on one side of the axis only: a wall's end, no wall across */
+    ffr_orient_reset(&o, &odo);
+    keep_nearest(&o, 466.0f, 78.0f);
+    keep_nearest(&o, 468.0f, 120.0f);
+    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
+    CHECK_NEAR(dx, 0.0f, 0.5f);
+    /* either side, but not as far along the axis: two walls' ends, none across */
+    ffr_orient_reset(&o, &odo);
+    keep_nearest(&o, 466.0f, 78.0f);
+    keep_nearest(&o, 530.0f, -68.0f);
+    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
+    CHECK_NEAR(dx, 0.0f, 0.5f);
+    /* farther off the axis than 15 degrees: not taken for a wall across */
+    ffr_orient_reset(&o, &odo);
+    keep_nearest(&o, 466.0f, 140.0f);
+    keep_nearest(&o, 466.0f, -140.0f);
+    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
+    CHECK_NEAR(dx, 0.0f, 0.5f);
+    /* a wall across read long, within the reach: stood at wall_target_mm from as read */
+    ffr_orient_reset(&o, &odo);
+    add_wall(&o, reach - 10.0f, 0.0f, 0.0f, 1.0f);
+    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
+    CHECK_NEAR(dx, reach - 10.0f - cfg.wall_target_mm, 5.0f);
+    /* beyond it: a far wall, no shift */
+    ffr_orient_reset(&o, &odo);
+    add_wall(&o, reach + 10.0f, 0.0f, 0.0f, 1.0f);
+    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
+    CHECK_NEAR(dx, 0.0f, 0.5f);
+}
+
 TEST(a_junction_read_short_keeps_the_way_with_its_wall)
 {
     /* the 2004 home's junction: the outer wall 280 mm east, the hallway's
@@ -408,10 +470,11 @@ TEST(the_aim_decides_as_aimints_one_tick_aim)
 
 TEST(the_aim_turns_on_its_own_tick)
 {
-    /* the centre's tick turns the bins into the walls' frame; the aim's
-     * tick (the next, no shift) decides and starts the turn: the start's
-     * timing as before the aim's rule grew. A hallway along x, both ways
-     * open, walls either side 230 mm off: the smaller turn (east) */
+    /* the centre's tick turns the bins into the walls' frame and decides
+     * the shift; the aim's tick (the next, no shift) decides and starts
+     * the turn: the start's timing as before the aim's rule grew. A
+     * hallway along x, both ways open, walls either side 230 mm off: the
+     * smaller turn (east) */
     ffr_state_t st;
     ffr_config_default(&st.cfg);
     st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
@@ -695,11 +758,16 @@ TEST(a_small_shift_across_the_way_is_not_made)
     CHECK_NEAR(dx, 80.0f, 15.0f);
     CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.5f * PI_F, dx, dy) == 1);
     /* 80 mm across it: not made with 100, made with 0 or 60 */
-    CHECK(ffr_orient_skip(&o, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy, 100.0f) == 1);
-    CHECK(ffr_orient_skip(&o, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy, 60.0f) == -1);
-    CHECK(ffr_orient_skip(&o, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy, 0.0f) == -1);
-    /* along the way to go it is never skipped beyond 40 mm */
-    CHECK(ffr_orient_skip(&o, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy + 60.0f, 100.0f) == -1);
+    {
+        /* ffr_orient_skip reads the bins in the walls' frame, as the centre's tick leaves them */
+        ffr_home_orient_t t = o;
+        ffr_orient_to_walls(&t, 0.0f);
+        CHECK(ffr_orient_skip(&t, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy, 100.0f) == 1);
+        CHECK(ffr_orient_skip(&t, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy, 60.0f) == -1);
+        CHECK(ffr_orient_skip(&t, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy, 0.0f) == -1);
+        /* along the way to go it is never skipped beyond 40 mm */
+        CHECK(ffr_orient_skip(&t, &cfg, 0.0f, 0.5f * PI_F, 0.0f, 0.0f, dx, dy + 60.0f, 100.0f) == -1);
+    }
     /* the whole firmware as built (FFR_HOME_SKIP_MM, default 0): every
      * shift over 40 mm is made */
     if (FFR_HOME_SKIP_MM_BUILT == 0.0f) {
@@ -1511,6 +1579,7 @@ SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
       TEST_REF(the_route_direction_by_the_wall_side_rule),
+      TEST_REF(a_far_wall_across_between_the_bins_places_the_robot),
       TEST_REF(a_junction_read_short_keeps_the_way_with_its_wall),
       TEST_REF(a_narrow_hallway_off_its_middle_is_a_way),
       TEST_REF(the_aim_decides_as_aimints_one_tick_aim),
