@@ -155,8 +155,15 @@ def test_lost_and_damaged_datagrams_are_counted_and_the_mission_holds() -> None:
     assert c["sent"] > c["received"] > rep.ticks_target, c
 
 
+# A mission long enough to be surely under way when the test interrupts it: room 4 at the default
+# speeds is ~9,000 ticks, ~1.5 s of QEMU here, which a faster or less busy machine ends before a fixed
+# wait does (seen: both tests below failing, QEMU gone, exit status 0). Slowed down it is ~30,000
+# ticks (the contest's time limits: at most 42,000).
+SLOW = ("--set", "firmware.cruise_speed_mm_s=50", "--set", "firmware.room_speed_mm_s=40")
+
+
 def _start_cli(*args: str) -> subprocess.Popen[str]:
-    return subprocess.Popen([sys.executable, "-m", "harness", "run", "--room", "4", *args],
+    return subprocess.Popen([sys.executable, "-m", "harness", "run", "--room", "4", *SLOW, *args],
                             cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
@@ -175,7 +182,8 @@ def test_board_killed_mid_mission_clear_error_no_stray_process(url: str) -> None
     machine = url.partition("#")[0]
     cli = _start_cli("--link", f"qemu:{url}")
     pid = _wait_for_qemu(machine, cli)
-    time.sleep(1.5)  # the mission is under way
+    time.sleep(0.5)  # the mission is under way
+    assert cli.poll() is None, "the mission ended before the board was killed"
     os.kill(pid, signal.SIGKILL)
     t0 = time.monotonic()
     out, err = cli.communicate(timeout=30)
@@ -191,7 +199,8 @@ def test_ctrl_c_shuts_qemu_down(url: str) -> None:
     machine = url.partition("#")[0]
     cli = _start_cli("--link", f"qemu:{url}")
     pid = _wait_for_qemu(machine, cli)
-    time.sleep(1.5)
+    time.sleep(0.5)  # the mission is under way
+    assert cli.poll() is None, "the mission ended before it was interrupted"
     cli.send_signal(signal.SIGINT)
     _, err = cli.communicate(timeout=30)
     assert cli.returncode == 130 and "interrupted" in err
