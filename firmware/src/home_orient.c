@@ -70,9 +70,15 @@
 /* ... or a wall across it farther out, whose nearest hits either side of
  * the axis fall outside that band: the sweep's hits are bins 10 degrees
  * wide, 80 mm apart on a wall 46 cm off (chosen: within 15 degrees of the
- * axis, both sides as far along it within ACROSS_TOL_MM) */
+ * axis, both sides as far along it within ACROSS_TOL_MM + ACROSS_TOL_FRAC
+ * of the nearer: the two sides' hits may come from two rangers, one part
+ * reading short and one long, 471 and 572 mm on one wall in fresh
+ * +-2.5 cm start seed 372) */
 #define ACROSS_CONE 0.26794919f /* tan 15 degrees */
 #define ACROSS_TOL_MM 30.0f
+#ifndef ACROSS_TOL_FRAC
+#define ACROSS_TOL_FRAC 0.25f
+#endif
 #ifndef RANGE_LONG_FRAC
 #define RANGE_LONG_FRAC 0.15f
 #endif
@@ -605,7 +611,7 @@ void ffr_orient_across4(const ffr_home_orient_t *o, float cu, float cv, float fr
          * both sides of it? (a hit in the band is nearer the axis: the
          * better measure where the wall crosses it) */
         float p = cone[2 * k], m = cone[2 * k + 1];
-        if (free_mm[k] > 65534.0f && ffr_absf(p - m) < ACROSS_TOL_MM) {
+        if (free_mm[k] > 65534.0f && ffr_absf(p - m) < ACROSS_TOL_MM + ACROSS_TOL_FRAC * (p < m ? p : m)) {
             free_mm[k] = p < m ? p : m;
         }
     }

@@ -236,10 +236,17 @@ TEST(a_far_wall_across_between_the_bins_places_the_robot)
     keep_nearest(&o, 468.0f, 120.0f);
     ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
     CHECK_NEAR(dx, 0.0f, 0.5f);
-    /* either side, but not as far along the axis: two walls' ends, none across */
+    /* either side, one read 21 % farther (two parts, one short, one long:
+     * fresh start seed 372): one wall across, stood off the nearer */
+    ffr_orient_reset(&o, &odo);
+    keep_nearest(&o, 471.0f, 45.0f);
+    keep_nearest(&o, 572.0f, -106.0f);
+    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
+    CHECK_NEAR(dx, 471.0f - cfg.wall_target_mm, 5.0f);
+    /* either side, but farther apart than 30 mm + 25 % of the nearer: two walls' ends, none across */
     ffr_orient_reset(&o, &odo);
     keep_nearest(&o, 466.0f, 78.0f);
-    keep_nearest(&o, 530.0f, -68.0f);
+    keep_nearest(&o, 466.0f + 30.0f + 0.25f * 466.0f + 8.0f, -68.0f);
     ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
     CHECK_NEAR(dx, 0.0f, 0.5f);
     /* farther off the axis than 15 degrees: not taken for a wall across */
