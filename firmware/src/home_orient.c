@@ -588,7 +588,11 @@ void ffr_orient_across4(const ffr_home_orient_t *o, float cu, float cv, float fr
         cone[k] = 65535.0f;
     }
     for (b = 0; b < FFR_ORIENT_BINS; ++b) {
-        /* a bin without a hit is far off both axes (ffr_orient_to_walls): in no band or cone */
+        /* a bin without a hit is far off both axes (ffr_orient_to_walls): in
+         * no band or cone. The u axis' test and the v axis' are written out,
+         * not one helper called twice: -Os does not inline it, and the calls
+         * took the centre's tick from 4,400 to 5,360 instructions on the M4
+         * (make selftest), over the 5,000 the PIL tests assert */
         float u = o->bin_x_mm[b] - cu, v = o->bin_y_mm[b] - cv;
         float au = ffr_absf(u), av = ffr_absf(v);
         if (av < CENTRE_BAND_MM || av < ACROSS_CONE * au) {

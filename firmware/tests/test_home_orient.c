@@ -198,6 +198,21 @@ static void add_stretch(ffr_home_orient_t *o, float x0, float y0, float x1, floa
     }
 }
 
+/* the centre's shift along x (dx) from bins holding only two hits, (x1, y1)
+ * and (x2, y2), seen from the sweep's centre, the walls' direction 0 */
+static float centre_dx_of_two(const ffr_config_t *cfg, float x1, float y1, float x2, float y2)
+{
+    ffr_home_orient_t o;
+    ffr_odometry_t odo;
+    float dx, dy;
+    ffr_odometry_reset(&odo);
+    ffr_orient_reset(&o, &odo);
+    keep_nearest(&o, x1, y1);
+    keep_nearest(&o, x2, y2);
+    ffr_orient_centre(&o, cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
+    return dx;
+}
+
 /* a wall across one of the four axes farther out than the sweep's hits are
  * dense: the bins nearest the axis are 10 degrees wide, so on a wall 46 cm
  * off their nearest hits may lie 70-80 mm either side of it, outside the
@@ -231,30 +246,14 @@ TEST(a_far_wall_across_between_the_bins_places_the_robot)
     CHECK_NEAR(dy, 466.0f - cfg.wall_target_mm, 5.0f);
     CHECK_NEAR(dx, 0.0f, 5.0f);
     /* hits on one side of the axis only: a wall's end, no wall across */
-    ffr_orient_reset(&o, &odo);
-    keep_nearest(&o, 466.0f, 78.0f);
-    keep_nearest(&o, 468.0f, 120.0f);
-    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
-    CHECK_NEAR(dx, 0.0f, 0.5f);
+    CHECK_NEAR(centre_dx_of_two(&cfg, 466.0f, 78.0f, 468.0f, 120.0f), 0.0f, 0.5f);
     /* either side, one read 21 % farther (two parts, one short, one long:
      * fresh start seed 372): one wall across, stood off the nearer */
-    ffr_orient_reset(&o, &odo);
-    keep_nearest(&o, 471.0f, 45.0f);
-    keep_nearest(&o, 572.0f, -106.0f);
-    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
-    CHECK_NEAR(dx, 471.0f - cfg.wall_target_mm, 5.0f);
+    CHECK_NEAR(centre_dx_of_two(&cfg, 471.0f, 45.0f, 572.0f, -106.0f), 471.0f - cfg.wall_target_mm, 5.0f);
     /* either side, but farther apart than 30 mm + 25 % of the nearer: two walls' ends, none across */
-    ffr_orient_reset(&o, &odo);
-    keep_nearest(&o, 466.0f, 78.0f);
-    keep_nearest(&o, 466.0f + 30.0f + 0.25f * 466.0f + 8.0f, -68.0f);
-    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
-    CHECK_NEAR(dx, 0.0f, 0.5f);
+    CHECK_NEAR(centre_dx_of_two(&cfg, 466.0f, 78.0f, 466.0f + 30.0f + 0.25f * 466.0f + 8.0f, -68.0f), 0.0f, 0.5f);
     /* farther off the axis than 15 degrees: not taken for a wall across */
-    ffr_orient_reset(&o, &odo);
-    keep_nearest(&o, 466.0f, 140.0f);
-    keep_nearest(&o, 466.0f, -140.0f);
-    ffr_orient_centre(&o, &cfg, 0.0f, 0.0f, 0.0f, &dx, &dy);
-    CHECK_NEAR(dx, 0.0f, 0.5f);
+    CHECK_NEAR(centre_dx_of_two(&cfg, 466.0f, 140.0f, 466.0f, -140.0f), 0.0f, 0.5f);
     /* a wall across read long, within the reach: stood at wall_target_mm from as read */
     ffr_orient_reset(&o, &odo);
     add_wall(&o, reach - 10.0f, 0.0f, 0.0f, 1.0f);
