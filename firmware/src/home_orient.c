@@ -96,6 +96,7 @@
 #define CLEAR_LINE_MIN_MM 20.0f   /* two hits closer: no direction between them     */
 #define CLEAR_RANGE_MM 350.0f     /* a hit farther than this is no threat          */
 #define ESCAPE_RADIUS_MM 150.0f   /* a sideways escape: an arc of this radius      */
+#define ESCAPE_WIDE_MM 300.0f     /* and from a wall beside that near, if it fits (chosen) */
 #define ESCAPE_MAX_MM 200.0f      /* one escape move at most this long             */
 #define ESCAPE_FREE_MM 60.0f      /* the end it drives toward keeps this clear     */
 #define LINE_MARGIN_MM 10.0f      /* the sweep stops for a wall line this near     */
@@ -103,6 +104,7 @@
 #define ARC_BAND_MM 30.0f         /* an arc's path: the half width plus this       */
 #define ESCAPE_START_MM 0.0f      /* the front shut: less room than this beyond ESCAPE_FREE_MM (chosen) */
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
+#define BESIDE_REAR_MM 30.0f      /* a rear ranger this far above its span's bottom: the wall beside */
 #define LEG_BACK 5u               /* the escape's leg: straight back, the front shut */
 #define LEG_FOLD 6u               /* the escape's leg: the rear fold move, straight forward */
 /* The rear fold move's length: the default body's rear corner swings out
@@ -866,6 +868,20 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
         o->leg = 1u;
         o->leg_mm = ESCAPE_RADIUS_MM * a;
         o->target_rad = (ny > 0.0f ? -1.0f : 1.0f) / ESCAPE_RADIUS_MM;
+        if (!o->reverse && beside_skip(st, ny) != 0u) {
+            /* forward from a wall beside nearer than the rangers measure
+             * (both at their span's bottom, or the rear one just above
+             * it): the first arc swings the rear corner out toward it,
+             * ~19 mm on the 150 mm arc, ~12 mm on ESCAPE_WIDE_MM's. The
+             * wider S where the floor ahead has room for it (fresh +-2.5 cm
+             * start seed 605: 14 mm off the wall) */
+            float cw = 1.0f - lat / (2.0f * ESCAPE_WIDE_MM);
+            float aw = ffr_atan2f(ffr_sqrtf(1.0f - cw * cw), cw);
+            if (front > st->cfg.body_front_mm + ESCAPE_FREE_MM + 2.0f * ESCAPE_WIDE_MM * ffr_sinf(aw)) {
+                o->leg_mm = ESCAPE_WIDE_MM * aw;
+                o->target_rad = (ny > 0.0f ? -1.0f : 1.0f) / ESCAPE_WIDE_MM;
+            }
+        }
         o->goal_mm = st->odo.dist_mm + o->leg_mm;
         if (o->reverse && shut && !was_back) {
             /* the front shut (a wall at a front corner): not an S backward
@@ -1166,7 +1182,12 @@ static float end_room(const ffr_state_t *st, int backward, float band, uint8_t s
  * < 0 right), nearer than the rangers measure: the corner and rear rangers
  * on that side reading at their span's bottom see that wall (very near, not
  * unknown), which lies along the move, not across either end of it; both
- * of them, as a wall along the side (one alone may be a wall's end). Their
+ * of them, as a wall along the side (one alone may be a wall's end). The
+ * rear one may read up to BESIDE_REAR_MM above the bottom: a part reading
+ * long, or the body a few degrees to the wall (fresh +-2.5 cm start seed
+ * 414: 27 mm off the wall, its rear ranger read 109-115 mm; taken for a
+ * wall's end, the front stayed shut, the escapes were spent without
+ * moving and the sweep swung the rear corner into the wall). Their
  * hits, placed at half the span's bottom, would otherwise land inside the
  * body's path band at both ends and shut both (the escape could not move;
  * the sweep then swung a corner into the wall). The centre ranger still
@@ -1177,7 +1198,8 @@ static uint8_t beside_skip(const ffr_state_t *st, float side)
     int i;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         if (st->ir_geom.beam_sin[i] * side > 0.5f) {
-            if (st->ir_mm[i] > st->cfg.ir_min_mm + 0.5f) {
+            if (st->ir_mm[i] > st->cfg.ir_min_mm + 0.5f &&
+                (st->ir_geom.beam_cos[i] > 0.0f || st->ir_mm[i] > st->cfg.ir_min_mm + BESIDE_REAR_MM)) {
                 return 0u; /* not both: the other may be a wall's end at a corner */
             }
             m = (uint8_t)(m | (1 << i));
@@ -1447,8 +1469,8 @@ int ffr_orient_step(ffr_state_t *st)
             /* straight back along the wall, as far as the S went along it */
             o->leg = 3u;
             o->reverse ^= 1u;
+            o->goal_mm = st->odo.dist_mm + 2.0f * ffr_sinf(o->leg_mm * ffr_absf(o->target_rad)) / ffr_absf(o->target_rad);
             o->target_rad = 0.0f;
-            o->goal_mm = st->odo.dist_mm + 2.0f * ESCAPE_RADIUS_MM * ffr_sinf(o->leg_mm / ESCAPE_RADIUS_MM);
             watch_slant(st);
             return 0;
         }

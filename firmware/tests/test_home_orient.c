@@ -1323,6 +1323,17 @@ TEST(the_sweep_turns_away_from_a_front_corner_read_folded_back)
     CHECK(cases >= 8);
 }
 
+/* The rig at the origin facing +x with the readings ir in, ORIENT begun and
+ * its first step taken: the first move chosen */
+static void first_move(rig_t *r, const ffr_config_t *cfg, const float ir[FFR_IR_COUNT])
+{
+    rig_init(r, cfg);
+    feed(r, cfg, ir);
+    rig_tick(r);
+    ffr_orient_begin(&r->st);
+    CHECK(ffr_orient_step(&r->st) == 0);
+}
+
 TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
 {
     /* a wall 140 mm off on the right: its corner and rear rangers read
@@ -1334,15 +1345,12 @@ TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
     ffr_config_t cfg;
     float ir[FFR_IR_COUNT];
     rig_t r;
+    int i;
     rig_walls_t right = {2000.0f, -140.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
     ffr_config_default(&cfg);
-    rig_init(&r, &cfg);
     readings(&cfg, &right, 0.0f, 0.0f, 0.0f, ir);
     CHECK(ir[FFR_IR_RF] <= cfg.ir_min_mm + 0.5f && ir[FFR_IR_RR] <= cfg.ir_min_mm + 0.5f);
-    feed(&r, &cfg, ir);
-    rig_tick(&r);
-    ffr_orient_begin(&r.st);
-    CHECK(ffr_orient_step(&r.st) == 0); /* CLEAR: the S begins */
+    first_move(&r, &cfg, ir);
     CHECK(r.st.orient.leg == 1u && r.st.orient.reverse == 0u && r.st.orient.target_rad > 0.0f);
     CHECK(ffr_orient_step(&r.st) == 0); /* ESCAPE: it moves */
     CHECK(r.st.cmd_v_mm_s > 0.0f && r.st.cmd_w_rad_s > 0.0f);
@@ -1350,14 +1358,70 @@ TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
         /* a wall across 200 mm ahead as well: no room for the S there; it does
          * not drive forward (as before) */
         rig_walls_t corner = {2000.0f, -140.0f, 200.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
-        rig_init(&r, &cfg);
         readings(&cfg, &corner, 0.0f, 0.0f, 0.0f, ir);
-        feed(&r, &cfg, ir);
-        rig_tick(&r);
-        ffr_orient_begin(&r.st);
-        CHECK(ffr_orient_step(&r.st) == 0);
+        first_move(&r, &cfg, ir);
         (void)ffr_orient_step(&r.st);
         CHECK(r.st.cmd_v_mm_s <= 0.0f); /* not forward into it */
+    }
+    {
+        /* the wall beside 27 mm off the left side: the corner ranger reads at
+         * its span's bottom, the rear one, a part reading 25 mm long, just
+         * above it (105 mm). A wall that near the rear corner is the wall
+         * beside, not a wall's end at the front corner: the S forward, and
+         * the whole start with no contact (fresh +-2.5 cm start seed 414: the
+         * front taken as shut, the escapes spent without moving, and the
+         * sweep's turn swung the rear corner into it) */
+        rig_walls_t left = {127.0f, -2000.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 25.0f, 0.0f}};
+        readings(&cfg, &left, 0.0f, 0.0f, 0.0f, ir);
+        CHECK(ir[FFR_IR_LF] <= cfg.ir_min_mm + 0.5f);
+        CHECK(ir[FFR_IR_LR] > cfg.ir_min_mm + 0.5f && ir[FFR_IR_LR] <= cfg.ir_min_mm + 30.0f);
+        first_move(&r, &cfg, ir);
+        CHECK(r.st.orient.leg == 1u && r.st.orient.reverse == 0u && r.st.orient.target_rad < 0.0f);
+        CHECK(orient_among(&left, 0.0f) == 2);
+        /* the rear ranger reading more than 30 mm above its span's bottom
+         * (BESIDE_REAR_MM): its wall may be another, the corner ranger's a
+         * wall's end at the front corner (the_front_shut_straight_back_before_the_s);
+         * the front stays shut, not the S forward */
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            left.part_mm[i] = 0.0f;
+        }
+        readings(&cfg, &left, 0.0f, 0.0f, 0.0f, ir);
+        ir[FFR_IR_LR] = cfg.ir_min_mm + 31.0f;
+        first_move(&r, &cfg, ir);
+        CHECK(!(r.st.orient.leg == 1u && r.st.orient.reverse == 0u));
+        ir[FFR_IR_LR] = cfg.ir_min_mm + 30.0f; /* just within: the wall beside */
+        first_move(&r, &cfg, ir);
+        CHECK(r.st.orient.leg == 1u && r.st.orient.reverse == 0u);
+    }
+}
+
+TEST(a_wall_beside_this_near_gets_the_wider_s_where_the_floor_allows)
+{
+    /* A wall along the left side 14 mm off, both rangers on that side at
+     * their span's bottom (the wall beside, its distance not measured). The
+     * S's first arc swings the rear corner out toward it: about 19 mm on
+     * the 150 mm arc, 12 mm on a 300 mm one (ESCAPE_WIDE_MM). With the
+     * floor ahead free for the wider S it drives that one, and the whole
+     * start has no contact (fresh +-2.5 cm start seed 605: 14 mm off the
+     * south wall, the 150 mm arc put the rear corner on it). With a wall
+     * across 450 mm ahead the wider S does not fit: the 150 mm one, as before */
+    static const float ahead_x[2] = {0.0f, 450.0f}, radius[2] = {300.0f, 150.0f};
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT];
+    rig_t r;
+    int k;
+    ffr_config_default(&cfg);
+    for (k = 0; k < 2; ++k) {
+        rig_walls_t w = {114.0f, -2000.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+        w.ahead_x = ahead_x[k];
+        readings(&cfg, &w, 0.0f, 0.0f, 0.0f, ir);
+        CHECK(ir[FFR_IR_LF] <= cfg.ir_min_mm + 0.5f && ir[FFR_IR_LR] <= cfg.ir_min_mm + 0.5f);
+        first_move(&r, &cfg, ir);
+        CHECK(r.st.orient.leg == 1u && r.st.orient.reverse == 0u);
+        CHECK_NEAR(r.st.orient.target_rad, -1.0f / radius[k], 1e-6f);
+        if (k == 0) {
+            CHECK(orient_among(&w, 0.0f) == 2); /* the whole start: no contact */
+        }
     }
 }
 
@@ -1605,6 +1669,7 @@ SUITE(home_orient,
       TEST_REF(the_sweep_turns_away_from_a_wall_beside),
       TEST_REF(the_sweep_turns_away_from_a_front_corner_read_folded_back),
       TEST_REF(a_wall_beside_below_the_span_is_no_end_of_the_s),
+      TEST_REF(a_wall_beside_this_near_gets_the_wider_s_where_the_floor_allows),
       TEST_REF(room_to_turn_again_after_the_shift),
       TEST_REF(a_straight_escape_stops_short_of_a_wall_across_at_a_slant),
       TEST_REF(a_straight_escape_is_not_refused_by_a_line_across_a_corner),
