@@ -830,6 +830,21 @@ static float end_room(const ffr_state_t *st, int backward, float band, uint8_t s
 static void watch_slant(ffr_state_t *st);
 static uint8_t beside_skip(const ffr_state_t *st, float side);
 
+/* An S of arcs of radius r that ends lat mm farther from the wall: each
+ * arc's angle (2 r (1 - cos a) = lat) */
+static float s_angle(float lat, float r)
+{
+    float c = 1.0f - lat / (2.0f * r);
+    return ffr_atan2f(ffr_sqrtf(1.0f - c * c), c);
+}
+
+/* The free floor ahead (from the axle) that such an S forward needs: the
+ * body's front, ESCAPE_FREE_MM, and the S's length along the wall, 2 r sin a */
+static float s_room(const ffr_config_t *cfg, float r, float a)
+{
+    return cfg->body_front_mm + ESCAPE_FREE_MM + 2.0f * r * ffr_sinf(a);
+}
+
 /* One move away from a wall d mm off in direction (nx, ny) (body frame). */
 static void start_escape(ffr_state_t *st, float need, float d, float nx, float ny)
 {
@@ -849,39 +864,38 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
          * forward if the front is free, else backward; then straight back
          * along the wall to where it began */
         float lat = need - d + 10.0f;
-        float c = 1.0f - lat / (2.0f * ESCAPE_RADIUS_MM);
-        float a = ffr_atan2f(ffr_sqrtf(1.0f - c * c), c);
+        float a = s_angle(lat, ESCAPE_RADIUS_MM), r = ESCAPE_RADIUS_MM;
         /* turning away from the wall's side, either way driven */
         /* the wall beside, read at the span's bottom, is no end of the path
          * when the floor ahead (as the other rangers see it) has room for the
          * whole S beyond ESCAPE_FREE_MM (else: as before) */
+        uint8_t skip = beside_skip(st, ny);
         float front = end_room(st, 0, ARC_BAND_MM, 0u);
-        float front_beside = end_room(st, 0, ARC_BAND_MM, beside_skip(st, ny));
+        float front_beside = end_room(st, 0, ARC_BAND_MM, skip);
         uint8_t was_back = o->leg == LEG_BACK;
         int shut;
-        if (front_beside > st->cfg.body_front_mm + ESCAPE_FREE_MM + 2.0f * ESCAPE_RADIUS_MM * ffr_sinf(a)) {
+        if (front_beside > s_room(&st->cfg, ESCAPE_RADIUS_MM, a)) {
             front = front_beside;
         }
         shut = front < st->cfg.body_front_mm + ESCAPE_FREE_MM + ESCAPE_START_MM;
         /* after the straight back below: forward, if that gave the front room */
         o->reverse = end_room(st, 1, ARC_BAND_MM, 0u) > front && (shut || !was_back);
-        o->leg = 1u;
-        o->leg_mm = ESCAPE_RADIUS_MM * a;
-        o->target_rad = (ny > 0.0f ? -1.0f : 1.0f) / ESCAPE_RADIUS_MM;
-        if (!o->reverse && beside_skip(st, ny) != 0u) {
+        if (!o->reverse && skip != 0u) {
             /* forward from a wall beside nearer than the rangers measure
              * (both at their span's bottom, or the rear one just above
              * it): the first arc swings the rear corner out toward it,
              * ~19 mm on the 150 mm arc, ~12 mm on ESCAPE_WIDE_MM's. The
              * wider S where the floor ahead has room for it (fresh +-2.5 cm
              * start seed 605: 14 mm off the wall) */
-            float cw = 1.0f - lat / (2.0f * ESCAPE_WIDE_MM);
-            float aw = ffr_atan2f(ffr_sqrtf(1.0f - cw * cw), cw);
-            if (front > st->cfg.body_front_mm + ESCAPE_FREE_MM + 2.0f * ESCAPE_WIDE_MM * ffr_sinf(aw)) {
-                o->leg_mm = ESCAPE_WIDE_MM * aw;
-                o->target_rad = (ny > 0.0f ? -1.0f : 1.0f) / ESCAPE_WIDE_MM;
+            float aw = s_angle(lat, ESCAPE_WIDE_MM);
+            if (front > s_room(&st->cfg, ESCAPE_WIDE_MM, aw)) {
+                a = aw;
+                r = ESCAPE_WIDE_MM;
             }
         }
+        o->leg = 1u;
+        o->leg_mm = r * a;
+        o->target_rad = (ny > 0.0f ? -1.0f : 1.0f) / r;
         o->goal_mm = st->odo.dist_mm + o->leg_mm;
         if (o->reverse && shut && !was_back) {
             /* the front shut (a wall at a front corner): not an S backward

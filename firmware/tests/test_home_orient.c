@@ -1345,7 +1345,6 @@ TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
     ffr_config_t cfg;
     float ir[FFR_IR_COUNT];
     rig_t r;
-    int i;
     rig_walls_t right = {2000.0f, -140.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
     ffr_config_default(&cfg);
     readings(&cfg, &right, 0.0f, 0.0f, 0.0f, ir);
@@ -1382,9 +1381,7 @@ TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
          * (BESIDE_REAR_MM): its wall may be another, the corner ranger's a
          * wall's end at the front corner (the_front_shut_straight_back_before_the_s);
          * the front stays shut, not the S forward */
-        for (i = 0; i < FFR_IR_COUNT; ++i) {
-            left.part_mm[i] = 0.0f;
-        }
+        left.part_mm[FFR_IR_LR] = 0.0f;
         readings(&cfg, &left, 0.0f, 0.0f, 0.0f, ir);
         ir[FFR_IR_LR] = cfg.ir_min_mm + 31.0f;
         first_move(&r, &cfg, ir);
