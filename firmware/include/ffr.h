@@ -375,7 +375,7 @@ typedef struct {
 #define FFR_ORIENT_BINS 36         /* 10 degrees each                         */
 typedef struct {
     uint8_t phase;                 /* sweep, centre, shift turn, shift drive, aim, turn, done, clear, escape */
-    uint8_t anchor_ok[FFR_IR_COUNT];
+    uint8_t anchors;               /* rangers (bit i) whose last hit anchors a stretch of wall */
     uint8_t reverse;               /* the shift (or escape leg) is driven backwards */
     uint8_t escapes;               /* moves made to get room to turn in place */
     uint8_t leg;                   /* the escape's leg: 0 straight, 1-3 the S and the way back, 4 the probe's way back, 5 straight back, 6 the rear fold move */
@@ -386,6 +386,7 @@ typedef struct {
     int8_t sweep_side;             /* the sweep turns: +1 left, -1 right, 0 toward home_wall_side */
     uint8_t after_shift;           /* room to turn looked for after the shift: its move ends in the aim */
     uint8_t slant_watch;           /* this straight escape began clear of a wall across it at a slant: it stops short of one */
+    float back_chord_mm;           /* the rear pair's chord behind when this straight leg began (rear_chord_room) */
     float leg_mm;                  /* the escape's arc legs' length           */
     float near_mm;                 /* nearest wall line seen in the sweep, from where it stands */
     float near_x_mm, near_y_mm;    /* its nearest point (odometry, from the robot) */

@@ -332,6 +332,8 @@ float ffr_stopping_speed(float remaining_mm, float top);
 
 /* home_orient.c: before the route, which way the robot faces at home. */
 void ffr_orient_begin(ffr_state_t *st);
+/* what an escape's leg watches, set as it begins (home_orient.c) */
+void ffr_orient_watch_leg(ffr_state_t *st);
 /* Returns 1 once the robot faces the route's first direction and odometry's
  * frame is square to the walls with heading 0 along it. */
 int ffr_orient_step(ffr_state_t *st);

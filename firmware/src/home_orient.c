@@ -98,6 +98,15 @@
 #define ESCAPE_RADIUS_MM 150.0f   /* a sideways escape: an arc of this radius      */
 #define ESCAPE_WIDE_MM 300.0f     /* and from a wall beside that near, if it fits (chosen) */
 #define ESCAPE_MAX_MM 200.0f      /* one escape move at most this long             */
+/* a straight move back stops with the rear pair's chord this near behind
+ * them, if it came nearer by REAR_NEARING_MM since the move began (walls
+ * beside do not come nearer). Chosen: their 135-degree beams reach the
+ * span's bottom (100 mm) on a wall 71 mm behind them, where they stop
+ * measuring it (fresh seed 476: the chord stayed at 81-83 mm from there
+ * on); 100 mm stops while both still measure it. 120 mm cut short moves
+ * that needed their length (fresh +-2.5 cm seeds 688, 746 lost whole) */
+#define REAR_CHORD_MM 100.0f
+#define REAR_NEARING_MM 15.0f
 #define ESCAPE_FREE_MM 60.0f      /* the end it drives toward keeps this clear     */
 #define LINE_MARGIN_MM 10.0f      /* the sweep stops for a wall line this near     */
 #define LINE_REACH_MM 200.0f      /* a wall seen may reach this far on unseen     */
@@ -156,6 +165,7 @@ void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
     o->sweep_side = 0;
     o->after_shift = 0u;
     o->slant_watch = 0u;
+    o->back_chord_mm = 0.0f; /* no leg begun: nothing to watch */
     o->leg_mm = 0.0f;
     o->near_mm = 65535.0f;
     o->near_x_mm = 0.0f;
@@ -166,8 +176,8 @@ void ffr_orient_reset(ffr_home_orient_t *o, const ffr_odometry_t *odo)
     o->dir0_rad = 0.0f;
     o->target_rad = odo->heading_rad;
     o->goal_mm = 0.0f;
+    o->anchors = 0u;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
-        o->anchor_ok[i] = 0u;
         o->anchor_x_mm[i] = 0.0f;
         o->anchor_y_mm[i] = 0.0f;
         o->probe_mm[i] = 0.0f;
@@ -207,7 +217,7 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
         float px, py, dx, dy, r, len;
         int b;
         if (!ffr_ir_valid(cfg, ir_mm[i])) {
-            o->anchor_ok[i] = 0u;
+            o->anchors = (uint8_t)(o->anchors & ~(1 << i));
             continue;
         }
         /* the hit in odometry's frame, relative to the sweep's centre */
@@ -222,11 +232,11 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
             o->bin_y_mm[b] = py;
         }
         if (ir_mm[i] > SEG_RANGE_MM) {
-            o->anchor_ok[i] = 0u;
+            o->anchors = (uint8_t)(o->anchors & ~(1 << i));
             continue;
         }
-        if (!o->anchor_ok[i]) {
-            o->anchor_ok[i] = 1u;
+        if (!((o->anchors >> i) & 1)) {
+            o->anchors = (uint8_t)(o->anchors | (1 << i));
             o->anchor_x_mm[i] = px;
             o->anchor_y_mm[i] = py;
             continue;
@@ -827,7 +837,6 @@ void ffr_orient_begin(ffr_state_t *st)
  * the front is free, else backward). 1 when there is room (or the moves are
  * spent): the sweep begins here. */
 static float end_room(const ffr_state_t *st, int backward, float band, uint8_t skip);
-static void watch_slant(ffr_state_t *st);
 static uint8_t beside_skip(const ffr_state_t *st, float side);
 
 /* An S of arcs of radius r that ends lat mm farther from the wall: each
@@ -913,7 +922,7 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
             o->goal_mm = st->odo.dist_mm + (want < ESCAPE_MAX_MM ? want : ESCAPE_MAX_MM);
         }
     }
-    watch_slant(st);
+    ffr_orient_watch_leg(st);
     o->phase = PH_ESCAPE;
 }
 
@@ -1067,7 +1076,7 @@ static int rear_fold_move(ffr_state_t *st)
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         o->probe_mm[i] = st->ir_mm[i];
     }
-    watch_slant(st);
+    ffr_orient_watch_leg(st);
     o->phase = PH_ESCAPE;
     return 1;
 }
@@ -1297,10 +1306,43 @@ static float corner_room(const ffr_state_t *st)
  * that near from the start may be two walls' hits across a room's corner
  * (the centre ranger on a wall ahead, the corner one on a wall beside), and
  * refusing the move at once would spend the escapes without moving */
-static void watch_slant(ffr_state_t *st)
+/* The rear pair's chord: the line through the two rear rangers' hits, how
+ * far behind them it crosses the body's band (65535: not both measured).
+ * Two walls meeting at a corner behind lie beyond it, a wall across behind
+ * on it; two walls beside (a hallway) give the same readings, a chord that
+ * does not come nearer as the robot backs along them. */
+static float rear_chord_room(const ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    const ffr_ir_geom_t *g = &st->ir_geom;
+    int i, a = -1, b = -1;
+    float k, xl, xr, rear;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if (g->beam_cos[i] < -0.5f && line_reading(cfg, st->ir_mm[i])) {
+            if (g->beam_sin[i] > 0.3f) {
+                a = i;
+            } else if (g->beam_sin[i] < -0.3f) {
+                b = i;
+            }
+        }
+    }
+    if (a < 0 || b < 0 || g->hit_y_mm[a] - g->hit_y_mm[b] < 1.0f) {
+        return 65535.0f;
+    }
+    k = (g->hit_x_mm[b] - g->hit_x_mm[a]) / (g->hit_y_mm[b] - g->hit_y_mm[a]);
+    xl = g->hit_x_mm[a] + (cfg->body_half_width_mm - g->hit_y_mm[a]) * k;
+    xr = g->hit_x_mm[a] + (-cfg->body_half_width_mm - g->hit_y_mm[a]) * k;
+    rear = 0.5f * (cfg->ir_x_mm[a] + cfg->ir_x_mm[b]);
+    return rear - (xl > xr ? xl : xr);
+}
+
+/* what a leg watches, set as it begins: a wall across at a slant ahead of
+ * a front corner (forward, straight), the rear pair's chord (straight back) */
+void ffr_orient_watch_leg(ffr_state_t *st)
 {
     ffr_home_orient_t *o = &st->orient;
     o->slant_watch = (uint8_t)(!o->reverse && o->target_rad == 0.0f && corner_room(st) >= CORNER_FREE_MM);
+    o->back_chord_mm = rear_chord_room(st);
 }
 
 /* the end the escape drives toward is free */
@@ -1314,6 +1356,15 @@ static int escape_free(const ffr_state_t *st)
     float need = st->cfg.body_front_mm + ESCAPE_FREE_MM;
     if (o->slant_watch && o->phase == PH_ESCAPE && corner_room(st) < CORNER_FREE_MM) {
         return 0; /* a wall across at a slant, ahead of a front corner */
+    }
+    if (o->reverse && o->target_rad == 0.0f && o->phase == PH_ESCAPE) {
+        /* straight back: a wall behind the rear pair's chord, coming nearer
+         * (fresh +-2.5 cm start seed 476: the east wall behind at a slant,
+         * 45 degrees off the move, in no hit within the body's band) */
+        float r = rear_chord_room(st);
+        if (r < REAR_CHORD_MM && r < o->back_chord_mm - REAR_NEARING_MM) {
+            return 0;
+        }
     }
     if (end_room(st, o->reverse & 1u, band, 0u) > need) {
         return 1;
@@ -1398,7 +1449,7 @@ void ffr_orient_after_shift(ffr_state_t *st)
     o->target_rad = 0.0f; /* curvature: straight */
     len = (need - d) / ffr_absf(nx) + 10.0f;
     o->goal_mm = st->odo.dist_mm + (len < ESCAPE_MAX_MM ? len : ESCAPE_MAX_MM);
-    watch_slant(st);
+    ffr_orient_watch_leg(st);
     o->phase = PH_ESCAPE;
 }
 
@@ -1485,7 +1536,7 @@ int ffr_orient_step(ffr_state_t *st)
             o->reverse ^= 1u;
             o->goal_mm = st->odo.dist_mm + 2.0f * ffr_sinf(o->leg_mm * ffr_absf(o->target_rad)) / ffr_absf(o->target_rad);
             o->target_rad = 0.0f;
-            watch_slant(st);
+            ffr_orient_watch_leg(st);
             return 0;
         }
         /* look again (next tick: the rangers from here); after the shift's

@@ -1590,7 +1590,7 @@ TEST(a_straight_escape_is_not_refused_by_a_line_across_a_corner)
      * ahead) and the left corner ranger's (the wall beside) cuts across the
      * corner ahead-left, under 100 mm from the front left corner: two
      * walls, not one across the move. The escape begins that near it, so it
-     * does not watch for it (watch_slant), and moves. Before, it was
+     * does not watch for it (ffr_orient_watch_leg), and moves. Before, it was
      * refused at once, the next escapes likewise, and with the four spent
      * the sweep turned with the rear 30 mm from the wall */
     static const float box[3][3] = {{-1.0f, 0.0f, 130.0f}, {0.0f, 1.0f, 150.0f}, {1.0f, 0.0f, 330.0f}};
@@ -1642,6 +1642,93 @@ TEST(a_wall_square_to_the_walls_from_two_measured_hits)
     CHECK(!ffr_orient_square_wall(&cfg, rig_geom(&g, &cfg, ir), ir, 0.0f, &d, &nx, &ny));
 }
 
+/* box_readings, the rear right ranger a part reading rr_long mm long near
+ * its span's bottom and folded back below 55 mm (folded_mm): as
+ * slant_readings' corner ranger, it never reads the bottom */
+static void box_readings_rr(const ffr_config_t *cfg, const float n[][3], int walls, float rr_long, float x, float y,
+                            float th, float ir[FFR_IR_COUNT])
+{
+    float mx, my, ux, uy, t = FFR_IR_NONE(cfg);
+    int k;
+    box_readings(cfg, n, walls, x, y, th, ir);
+    rig_ray(cfg, FFR_IR_RR, x, y, th, &mx, &my, &ux, &uy);
+    for (k = 0; k < walls; ++k) {
+        float un = ux * n[k][0] + uy * n[k][1];
+        float tk = un > 0.05f ? (n[k][2] - (mx * n[k][0] + my * n[k][1])) / un : -1.0f;
+        if (tk > 0.0f && tk < t) {
+            t = tk;
+        }
+    }
+    if (t <= cfg->ir_max_mm) {
+        ir[FFR_IR_RR] = t < 55.0f ? folded_mm(cfg, t) : t + rr_long;
+    }
+}
+
+/* A straight escape backward (phase 8, leg 0) among the walls of `box`,
+ * from the origin heading 0, goal_mm to go: where it ended (odometry x) */
+static float straight_back(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float rr_long,
+                           float goal_mm)
+{
+    float ir[FFR_IR_COUNT];
+    int i;
+    rig_init(r, cfg);
+    box_readings_rr(cfg, box, walls, rr_long, 0.0f, 0.0f, 0.0f, ir);
+    feed(r, cfg, ir);
+    rig_tick(r); /* the readings in */
+    ffr_orient_begin(&r->st);
+    r->st.orient.phase = 8u; /* PH_ESCAPE: straight (curvature 0), backward */
+    r->st.orient.leg = 0u;
+    r->st.orient.reverse = 1u;
+    r->st.orient.target_rad = 0.0f;
+    r->st.orient.escapes = 1u;
+    r->st.orient.goal_mm = r->st.odo.dist_mm + goal_mm;
+    r->st.started = 1;
+    ffr_orient_watch_leg(&r->st); /* as the escape's start does */
+    for (i = 0; i < 600 && r->st.orient.phase == 8u; ++i) {
+        box_readings_rr(cfg, box, walls, rr_long, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad, ir);
+        feed(r, cfg, ir);
+        rig_tick(r);
+    }
+    CHECK(r->st.orient.phase != 8u);
+    return r->st.odo.x_mm;
+}
+
+TEST(a_straight_escape_back_stops_as_the_rear_pairs_chord_nears)
+{
+    /* fresh +-2.5 cm start seed 476: straight back toward a corner behind,
+     * its walls at 38 and 52 degrees to the move, each square to one rear
+     * ranger's beam (175 and 209 mm); the rear right ranger a part reading
+     * 45 mm long near its span's bottom, folded back below it. The rear
+     * right corner would meet the first wall after 177 mm of the 200 mm
+     * move, and the watch of the body's own band behind sees it only when
+     * the ranger's reading folds back into the band: without the chord's
+     * watch it stops 20 mm off the wall. The line through the rear pair's
+     * hits comes nearer as the robot backs: it stops 59 mm off */
+    static const float box[2][3] = {{-0.788f, -0.616f, 280.0f}, {-0.616f, 0.788f, 310.8f}};
+    ffr_config_t cfg;
+    rig_t r;
+    float x, gap;
+    ffr_config_default(&cfg);
+    x = straight_back(&r, &cfg, box, 2, 45.0f, 200.0f);
+    /* the rear right corner's gap to the first wall, along its normal */
+    gap = box[0][2] - (box[0][0] * (x - 100.0f) + box[0][1] * (-100.0f));
+    CHECK(gap > 30.0f);
+    CHECK(x < -30.0f);  /* it did move: the chord was not near at first */
+}
+
+TEST(a_straight_escape_back_between_walls_beside_goes_its_length)
+{
+    /* a hallway: walls 60 mm off both sides. The rear pair's hits (127 mm
+     * each) make a chord 90 mm behind them, nearer than REAR_CHORD_MM, but
+     * it does not come nearer as the robot backs along the walls: the move
+     * goes its whole 150 mm */
+    static const float box[2][3] = {{0.0f, 1.0f, 160.0f}, {0.0f, -1.0f, 160.0f}};
+    ffr_config_t cfg;
+    rig_t r;
+    ffr_config_default(&cfg);
+    CHECK(straight_back(&r, &cfg, box, 2, 0.0f, 150.0f) < -140.0f);
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -1670,4 +1757,6 @@ SUITE(home_orient,
       TEST_REF(room_to_turn_again_after_the_shift),
       TEST_REF(a_straight_escape_stops_short_of_a_wall_across_at_a_slant),
       TEST_REF(a_straight_escape_is_not_refused_by_a_line_across_a_corner),
-      TEST_REF(a_wall_square_to_the_walls_from_two_measured_hits));
+      TEST_REF(a_wall_square_to_the_walls_from_two_measured_hits),
+      TEST_REF(a_straight_escape_back_stops_as_the_rear_pairs_chord_nears),
+      TEST_REF(a_straight_escape_back_between_walls_beside_goes_its_length));
