@@ -107,6 +107,11 @@
  * that needed their length (fresh +-2.5 cm seeds 688, 746 lost whole) */
 #define REAR_CHORD_MM 100.0f
 #define REAR_NEARING_MM 15.0f
+/* corner_chord's front reading above the span's bottom (chosen, as
+ * BESIDE_REAR_MM: a part reading long; at 0, start circle seeds 574 and
+ * 936, 22 and 36 mm off a wall along the side, front 106 and 109 mm, rear
+ * at the bottom, were taken for corners and their sweeps met the wall) */
+#define CHORD_FRONT_MM 30.0f
 #define ESCAPE_FREE_MM 60.0f      /* the end it drives toward keeps this clear     */
 #define LINE_MARGIN_MM 10.0f      /* the sweep stops for a wall line this near     */
 #define LINE_REACH_MM 200.0f      /* a wall seen may reach this far on unseen     */
@@ -838,6 +843,7 @@ void ffr_orient_begin(ffr_state_t *st)
  * spent): the sweep begins here. */
 static float end_room(const ffr_state_t *st, int backward, float band, uint8_t skip);
 static uint8_t beside_skip(const ffr_state_t *st, float side);
+static int line_reading(const ffr_config_t *cfg, float d);
 
 /* An S of arcs of radius r that ends lat mm farther from the wall: each
  * arc's angle (2 r (1 - cos a) = lat) */
@@ -855,6 +861,28 @@ static float s_room(const ffr_config_t *cfg, float r, float a)
 }
 
 /* One move away from a wall d mm off in direction (nx, ny) (body frame). */
+/* A line across a corner, not a wall along the side (side: > 0 left, < 0
+ * right): the side's front corner ranger measures its wall, more than
+ * CHORD_FRONT_MM above its span's bottom, and the rear one reads at the
+ * bottom. A wall along the side reads alike at both ends (both at the
+ * bottom when near); here the front one's wall is ahead of that side, the
+ * rear one's behind it (fresh +-2.5 cm start seed 703: 142 mm on the wall
+ * ahead at 31 degrees, the rear one on the wall behind). */
+static int corner_chord(const ffr_state_t *st, float side)
+{
+    int i, front = 0, rear = 0;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if (st->ir_geom.beam_sin[i] * side > 0.5f) {
+            if (st->ir_geom.beam_cos[i] > 0.0f) {
+                front = line_reading(&st->cfg, st->ir_mm[i]) && st->ir_mm[i] > st->cfg.ir_min_mm + CHORD_FRONT_MM;
+            } else {
+                rear = ffr_ir_valid(&st->cfg, st->ir_mm[i]) && st->ir_mm[i] <= st->cfg.ir_min_mm + 0.5f;
+            }
+        }
+    }
+    return front && rear;
+}
+
 static void start_escape(ffr_state_t *st, float need, float d, float nx, float ny)
 {
     ffr_home_orient_t *o = &st->orient;
@@ -901,6 +929,18 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
                 a = aw;
                 r = ESCAPE_WIDE_MM;
             }
+        }
+        if (!o->reverse && front < s_room(&st->cfg, r, a) && corner_chord(st, ny)) {
+            /* the line cuts across a corner, and the floor ahead is shorter
+             * than the whole S: no S forward, whose front corner would meet
+             * the wall ahead (seed 703: 269 mm of the 356 it needs, the
+             * front left corner on the south wall at 1.22 s). The escapes
+             * are given up and the sweep turns in place, as once they are
+             * spent: the rangers read the two walls past the body's ends,
+             * not beside it (seed 703: 216 and 233 mm off the axle) */
+            o->escapes = ESCAPE_TRIES;
+            o->phase = PH_CLEAR;
+            return;
         }
         o->leg = 1u;
         o->leg_mm = r * a;

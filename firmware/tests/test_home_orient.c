@@ -1729,6 +1729,92 @@ TEST(a_straight_escape_back_between_walls_beside_goes_its_length)
     CHECK(straight_back(&r, &cfg, box, 2, 0.0f, 150.0f) < -140.0f);
 }
 
+/* every corner of the body at (x, y, th) inside every wall of `box` */
+static int box_clear(const float box[][3], int walls, float x, float y, float th)
+{
+    static const float bx[4] = {120.0f, 120.0f, -100.0f, -100.0f};
+    static const float by[4] = {100.0f, -100.0f, 100.0f, -100.0f};
+    float c = ffr_cosf(th), s = ffr_sinf(th);
+    int j, k;
+    for (k = 0; k < 4; ++k) {
+        float px = x + c * bx[k] - s * by[k];
+        float py = y + s * bx[k] + c * by[k];
+        for (j = 0; j < walls; ++j) {
+            if (px * box[j][0] + py * box[j][1] >= box[j][2]) {
+                return 0;
+            }
+        }
+    }
+    return 1;
+}
+
+/* The whole firmware orienting among the walls of `box` (box_readings)
+ * from the origin heading 0 until it leaves ORIENT (or 1500 ticks): 1 if
+ * the body never met a wall; *s_forward: whether an S forward began */
+static int orient_in_box(const ffr_config_t *cfg, const float box[][3], int walls, int *s_forward)
+{
+    rig_t r;
+    float ir[FFR_IR_COUNT];
+    int i, clear = 1;
+    rig_init(&r, cfg);
+    r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
+    r.in.start = 1;
+    *s_forward = 0;
+    for (i = 0; i < 1500; ++i) {
+        box_readings(cfg, box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+        feed(&r, cfg, ir);
+        rig_tick(&r);
+        if (r.out.state != FFR_ST_ORIENT && i > 2) {
+            break;
+        }
+        *s_forward |= r.st.orient.phase == 8u && r.st.orient.leg == 1u && !r.st.orient.reverse;
+        clear &= box_clear(box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+    }
+    return clear;
+}
+
+TEST(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside)
+{
+    /* fresh +-2.5 cm start seed 703: the south wall ahead-left, the east
+     * wall behind-left, both ~200 mm or more off the axle: room to turn in
+     * place. The left front ranger reads the first (142 mm), the left rear
+     * one the second below its span (its bottom; in the seed a part reading
+     * short, here the wall 20 mm nearer): the line through their hits looks
+     * like a wall beside, and the S forward away from it began with less
+     * floor ahead than it needs (in the seed its front left corner met the
+     * south wall). Such a line, with no floor for the S: the sweep turns in
+     * place */
+    static const float box[2][3] = {{0.857f, 0.515f, 243.0f}, {-0.515f, 0.857f, 196.0f}};
+    ffr_config_t cfg;
+    int s_forward;
+    ffr_config_default(&cfg);
+    CHECK(orient_in_box(&cfg, box, 2, &s_forward));
+    CHECK(!s_forward);
+}
+
+TEST(a_wall_beside_with_little_floor_ahead_still_gets_the_s)
+{
+    /* one wall along the left side, 40 mm off, a wall across 380 mm ahead,
+     * less than the S needs: both left rangers at their span's bottom, a
+     * wall along the side, not a corner. The S forward as before (turning in
+     * place would swing the rear corner 41 mm out). Only the choice is
+     * checked: here the S cannot go far and the escapes are spent, with or
+     * without the rule (the sweep then meets the wall) */
+    static const float box[2][3] = {{0.0f, 1.0f, 140.0f}, {1.0f, 0.0f, 380.0f}};
+    /* the wall 5 degrees off the side, 22 mm off the rear corner, one
+     * across 330 mm ahead: the front corner ranger measures the first at
+     * 105 mm, the rear one reads the bottom (start circle seeds 574, 936:
+     * 106 and 109 mm); with CHORD_FRONT_MM 0, no S */
+    static const float slant[2][3] = {{-0.0872f, 0.9962f, 130.3f}, {1.0f, 0.0f, 330.0f}};
+    ffr_config_t cfg;
+    int s_forward;
+    ffr_config_default(&cfg);
+    (void)orient_in_box(&cfg, box, 2, &s_forward);
+    CHECK(s_forward);
+    (void)orient_in_box(&cfg, slant, 2, &s_forward);
+    CHECK(s_forward);
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -1759,4 +1845,6 @@ SUITE(home_orient,
       TEST_REF(a_straight_escape_is_not_refused_by_a_line_across_a_corner),
       TEST_REF(a_wall_square_to_the_walls_from_two_measured_hits),
       TEST_REF(a_straight_escape_back_stops_as_the_rear_pairs_chord_nears),
-      TEST_REF(a_straight_escape_back_between_walls_beside_goes_its_length));
+      TEST_REF(a_straight_escape_back_between_walls_beside_goes_its_length),
+      TEST_REF(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside),
+      TEST_REF(a_wall_beside_with_little_floor_ahead_still_gets_the_s));
