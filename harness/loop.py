@@ -193,15 +193,15 @@ class Mission:
             n_sub = plant.steps_for(period)
             cp, cs = candle.pack()
             ev = pack_events(scn.events)
-            args = (link.step_address, link.state_address, inp.ctypes.data, out.ctypes.data,
+            with sigint_deferred():  # numba takes the Generator in: a Ctrl-C there is a SIGSEGV
+                end, k, t = mission_kernel(
+                    link.step_address, link.state_address, inp.ctypes.data, out.ctypes.data,
                     u32, i32, u16, in_bytes, o16, out_bytes, hw, tf, ti, record,
                     *sensors.kernel_args(), rng,
                     ev, np.zeros((N_CHANNELS, N_EV_STATE)), np.zeros(len(ev), dtype=np.int64),
                     *plant.kernel_args(), n_sub, cs, cp, period_ms, start_tick, max_ticks,
                     float(tm.find_limit_s), float(tm.return_limit_s), bool(scn.stop_on_contact),
                     FLAG_DONE, FLAG_FAILED)
-            with sigint_deferred():  # numba takes the Generator in: a Ctrl-C there is a SIGSEGV
-                end, k, t = mission_kernel(*args)
             link.steps += k
             candle.unpack(cs)
             plant.apply(int(o16[2]), int(o16[3]), bool(out_bytes[8]))

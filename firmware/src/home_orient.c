@@ -860,7 +860,6 @@ static float s_room(const ffr_config_t *cfg, float r, float a)
     return cfg->body_front_mm + ESCAPE_FREE_MM + 2.0f * r * ffr_sinf(a);
 }
 
-/* One move away from a wall d mm off in direction (nx, ny) (body frame). */
 /* A line across a corner, not a wall along the side (side: > 0 left, < 0
  * right): the side's front corner ranger measures its wall, more than
  * CHORD_FRONT_MM above its span's bottom, and the rear one reads at the
@@ -883,6 +882,7 @@ static int corner_chord(const ffr_state_t *st, float side)
     return front && rear;
 }
 
+/* One move away from a wall d mm off in direction (nx, ny) (body frame). */
 static void start_escape(ffr_state_t *st, float need, float d, float nx, float ny)
 {
     ffr_home_orient_t *o = &st->orient;
@@ -1341,11 +1341,6 @@ static float corner_room(const ffr_state_t *st)
     return room;
 }
 
-/* A straight escape forward watches for a wall across it at a slant only
- * if it begins clear of one (corner_room at least CORNER_FREE_MM): a line
- * that near from the start may be two walls' hits across a room's corner
- * (the centre ranger on a wall ahead, the corner one on a wall beside), and
- * refusing the move at once would spend the escapes without moving */
 /* The rear pair's chord: the line through the two rear rangers' hits, how
  * far behind them it crosses the body's band (65535: not both measured).
  * Two walls meeting at a corner behind lie beyond it, a wall across behind
@@ -1376,8 +1371,13 @@ static float rear_chord_room(const ffr_state_t *st)
     return rear - (xl > xr ? xl : xr);
 }
 
-/* what a leg watches, set as it begins: a wall across at a slant ahead of
- * a front corner (forward, straight), the rear pair's chord (straight back) */
+/* What a leg watches, set as it begins: a wall across at a slant ahead of
+ * a front corner (forward, straight), the rear pair's chord (straight back).
+ * A straight escape forward watches for a wall across it at a slant only
+ * if it begins clear of one (corner_room at least CORNER_FREE_MM): a line
+ * that near from the start may be two walls' hits across a room's corner
+ * (the centre ranger on a wall ahead, the corner one on a wall beside), and
+ * refusing the move at once would spend the escapes without moving */
 void ffr_orient_watch_leg(ffr_state_t *st)
 {
     ffr_home_orient_t *o = &st->orient;

@@ -621,10 +621,13 @@ TEST(the_nearest_wall_from_the_five_rangers)
  * rig's drive is exact, so odometry is the true pose; the body (120 mm
  * ahead, 100 mm behind, 100 mm either side) must never reach a wall while
  * the robot orients, and it must orient and start the route. */
+/* the default body's corners (body frame, mm) */
+static const float k_corner_x[4] = {120.0f, 120.0f, -100.0f, -100.0f};
+static const float k_corner_y[4] = {100.0f, -100.0f, 100.0f, -100.0f};
+
 static int body_clear(const rig_walls_t *w, float x, float y, float th)
 {
-    static const float bx[4] = {120.0f, 120.0f, -100.0f, -100.0f};
-    static const float by[4] = {100.0f, -100.0f, 100.0f, -100.0f};
+    const float *bx = k_corner_x, *by = k_corner_y;
     float c = ffr_cosf(th), s = ffr_sinf(th);
     int k;
     for (k = 0; k < 4; ++k) {
@@ -1563,21 +1566,29 @@ TEST(a_straight_escape_stops_short_of_a_wall_across_at_a_slant)
 
 /* Readings in a box of straight walls (world frame: n_k . p = c_k, each n_k
  * a unit normal pointing out of the box), the robot at (x, y, th): each
- * beam's nearest wall; below the span's bottom as the bottom. */
+ * beam's nearest wall (box_beam_mm: ranger i's, unclipped); below the
+ * span's bottom as the bottom (box_readings). */
+static float box_beam_mm(const ffr_config_t *cfg, const float n[][3], int walls, int i, float x, float y, float th)
+{
+    float mx, my, ux, uy, best = FFR_IR_NONE(cfg);
+    int k;
+    rig_ray(cfg, i, x, y, th, &mx, &my, &ux, &uy);
+    for (k = 0; k < walls; ++k) {
+        float un = ux * n[k][0] + uy * n[k][1];
+        float t = un > 0.05f ? (n[k][2] - (mx * n[k][0] + my * n[k][1])) / un : -1.0f;
+        if (t > 0.0f && t < best) {
+            best = t;
+        }
+    }
+    return best;
+}
+
 static void box_readings(const ffr_config_t *cfg, const float n[][3], int walls, float x, float y, float th,
                          float ir[FFR_IR_COUNT])
 {
-    int i, k;
+    int i;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
-        float mx, my, ux, uy, best = FFR_IR_NONE(cfg);
-        rig_ray(cfg, i, x, y, th, &mx, &my, &ux, &uy);
-        for (k = 0; k < walls; ++k) {
-            float un = ux * n[k][0] + uy * n[k][1];
-            float t = un > 0.05f ? (n[k][2] - (mx * n[k][0] + my * n[k][1])) / un : -1.0f;
-            if (t > 0.0f && t < best) {
-                best = t;
-            }
-        }
+        float best = box_beam_mm(cfg, n, walls, i, x, y, th);
         ir[i] = best > cfg->ir_max_mm ? FFR_IR_NONE(cfg) : (best < cfg->ir_min_mm ? cfg->ir_min_mm : best);
     }
 }
@@ -1648,17 +1659,8 @@ TEST(a_wall_square_to_the_walls_from_two_measured_hits)
 static void box_readings_rr(const ffr_config_t *cfg, const float n[][3], int walls, float rr_long, float x, float y,
                             float th, float ir[FFR_IR_COUNT])
 {
-    float mx, my, ux, uy, t = FFR_IR_NONE(cfg);
-    int k;
+    float t = box_beam_mm(cfg, n, walls, FFR_IR_RR, x, y, th);
     box_readings(cfg, n, walls, x, y, th, ir);
-    rig_ray(cfg, FFR_IR_RR, x, y, th, &mx, &my, &ux, &uy);
-    for (k = 0; k < walls; ++k) {
-        float un = ux * n[k][0] + uy * n[k][1];
-        float tk = un > 0.05f ? (n[k][2] - (mx * n[k][0] + my * n[k][1])) / un : -1.0f;
-        if (tk > 0.0f && tk < t) {
-            t = tk;
-        }
-    }
     if (t <= cfg->ir_max_mm) {
         ir[FFR_IR_RR] = t < 55.0f ? folded_mm(cfg, t) : t + rr_long;
     }
@@ -1732,8 +1734,7 @@ TEST(a_straight_escape_back_between_walls_beside_goes_its_length)
 /* every corner of the body at (x, y, th) inside every wall of `box` */
 static int box_clear(const float box[][3], int walls, float x, float y, float th)
 {
-    static const float bx[4] = {120.0f, 120.0f, -100.0f, -100.0f};
-    static const float by[4] = {100.0f, -100.0f, 100.0f, -100.0f};
+    const float *bx = k_corner_x, *by = k_corner_y;
     float c = ffr_cosf(th), s = ffr_sinf(th);
     int j, k;
     for (k = 0; k < 4; ++k) {
