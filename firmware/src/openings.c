@@ -35,6 +35,15 @@
 
 /* a wall alongside keeps its distance to the side within this, mm */
 #define REAR_LAT_DRIFT_MM 60.0f
+/* ... and only the rear ranger's hits within this of its first count toward
+ * wall_seen_mm. A wall across behind the robot recedes from the rear
+ * ranger's 135-degree beam by 1 mm to the side per mm of travel: with
+ * REAR_LAT_DRIFT_MM alone it counted for the first 60 mm, and wall_seen_mm
+ * is 60 (2001 plan, +-2.5 cm jitter, seeds 66, 72, 83: leaving room 2, the
+ * west outer wall behind was "seen" on the right, and the step to the
+ * corridor ended after 68 mm). Chosen: half of wall_seen_mm, above the
+ * rangers' noise on a wall alongside (a few mm) */
+#define REAR_SEEN_DRIFT_MM 30.0f
 /* the front ranger's hit jumping out this far to the side of the wall it was
  * following is past that wall's end (through a door, across a junction), even
  * when it still counts as beside; slow drift is followed at this share per tick */
@@ -145,6 +154,7 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
         /* a wall beside the robot, not one across an opening (wall_follow.c);
          * fx, rx: how far ahead the hits are, fy, ry: to the side */
         float fx = 0.0f, fy = 0.0f, rx = 0.0f, ry = 0.0f;
+        int rear_still = 0; /* the rear ranger's hit as far to the side as its first */
         int front = ffr_hit_beside(cfg, g, ir_mm, f, &fx, &fy);
         int rear = ffr_hit_beside(cfg, g, ir_mm, r, &rx, &ry);
         if (front) {
@@ -164,6 +174,7 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
             } else if (ffr_absf(lat - op->rear_lat0_mm[side]) > REAR_LAT_DRIFT_MM) {
                 op->rear_ok[side] = 0; /* not a wall alongside: for good, this step */
             }
+            rear_still = ffr_absf(lat - op->rear_lat0_mm[side]) <= REAR_SEEN_DRIFT_MM;
             if (op->rear_ok[side] || op->front_saw[side] != FRONT_PAST_END) {
                 /* pending, the last hit on the wall alongside is kept */
                 op->rear_open_mm[side] = 0.0f;
@@ -187,7 +198,7 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
             }
             continue;
         }
-        if (front || rear) {
+        if (front || (rear && rear_still)) {
             op->seen_mm[side] += step_mm;
             if (op->seen_mm[side] >= cfg->wall_seen_mm) {
                 op->seen[side] = 1;

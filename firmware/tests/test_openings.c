@@ -102,6 +102,43 @@ TEST(a_hit_jumping_out_is_past_the_wall_end_a_drift_is_followed)
     CHECK(op.seen[FFR_SIDE_LEFT] && !ffr_opening(&op, FFR_SIDE_LEFT));
 }
 
+TEST(a_wall_across_behind_receding_is_no_wall_seen)
+{
+    /* leaving a room into a wide hallway: nothing beside on the right within
+     * open_mm, but the rear right ranger's beam meets the wall square across
+     * behind (the 2001 plan's west outer wall, seeds 66, 72, 83). Each mm of
+     * travel puts that hit 1 mm farther to the side: the range grows by
+     * sqrt(2) mm. In a step that ends at the right's opening, no opening
+     * (before REAR_SEEN_DRIFT_MM it opened at 60 mm of travel: 41 checks fail) */
+    ffr_config_t cfg;
+    ffr_openings_t op;
+    ffr_ir_geom_t g;
+    float ir[FFR_IR_COUNT];
+    float d = 0.0f;
+    int i;
+    ffr_config_default(&cfg);
+    rig_no_walls(&cfg, ir);
+    ffr_openings_reset(&op);
+    for (i = 0; i < 60; ++i, d += 3.0f) {
+        ir[FFR_IR_RR] = 188.0f + 1.41421356f * d;
+        ffr_openings_update(&op, &cfg, rig_geom(&g, &cfg, ir), ir, d, 3.0f, FFR_SIDE_RIGHT);
+        CHECK(!ffr_opening(&op, FFR_SIDE_RIGHT));
+    }
+    CHECK(!op.seen[FFR_SIDE_RIGHT]);
+    /* a wall alongside read by the rear ranger alone (its reading a few mm
+     * either way) is still seen, and its end is an opening */
+    ffr_openings_reset(&op);
+    d = 0.0f;
+    for (i = 0; i < 40; ++i, d += 3.0f) {
+        ir[FFR_IR_RR] = 226.0f + (float)((i % 5) - 2) * 4.0f;
+        ffr_openings_update(&op, &cfg, rig_geom(&g, &cfg, ir), ir, d, 3.0f, -1);
+    }
+    CHECK(op.seen[FFR_SIDE_RIGHT] && !ffr_opening(&op, FFR_SIDE_RIGHT));
+    ir[FFR_IR_RR] = FFR_IR_NONE(&cfg);
+    rig_travel(&op, &cfg, ir, &d, 20);
+    CHECK(ffr_opening(&op, FFR_SIDE_RIGHT));
+}
+
 /* ---- whole openings (GAP events): a corridor of wall segments ---------- */
 
 /* Axis-aligned wall faces, mm: x0 == x1 (across the corridor) or y0 == y1 (along it). */
@@ -392,6 +429,7 @@ SUITE(openings,
       TEST_REF(a_wall_then_open_is_an_opening_and_stays_one),
       TEST_REF(a_dropout_counts_half),
       TEST_REF(a_hit_jumping_out_is_past_the_wall_end_a_drift_is_followed),
+      TEST_REF(a_wall_across_behind_receding_is_no_wall_seen),
       TEST_REF(gaps_a_door_then_a_hallway_are_two_openings_each_put_by_its_far_edge),
       TEST_REF(gaps_a_step_that_starts_in_an_opening_counts_it_from_its_far_edge),
       TEST_REF(gaps_a_yawed_robot_puts_the_far_edge_along_the_corridor),
