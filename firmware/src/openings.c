@@ -168,13 +168,15 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
             }
         }
         if (rear) {
-            float lat = ffr_absf(ry);
+            float drift;
             if (op->rear_lat0_mm[side] < 0.0f) {
-                op->rear_lat0_mm[side] = lat;
-            } else if (ffr_absf(lat - op->rear_lat0_mm[side]) > REAR_LAT_DRIFT_MM) {
+                op->rear_lat0_mm[side] = ffr_absf(ry);
+            }
+            drift = ffr_absf(ffr_absf(ry) - op->rear_lat0_mm[side]);
+            if (drift > REAR_LAT_DRIFT_MM) {
                 op->rear_ok[side] = 0; /* not a wall alongside: for good, this step */
             }
-            rear_still = ffr_absf(lat - op->rear_lat0_mm[side]) <= REAR_SEEN_DRIFT_MM;
+            rear_still = drift <= REAR_SEEN_DRIFT_MM;
             if (op->rear_ok[side] || op->front_saw[side] != FRONT_PAST_END) {
                 /* pending, the last hit on the wall alongside is kept */
                 op->rear_open_mm[side] = 0.0f;

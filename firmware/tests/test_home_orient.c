@@ -625,14 +625,20 @@ TEST(the_nearest_wall_from_the_five_rangers)
 static const float k_corner_x[4] = {120.0f, 120.0f, -100.0f, -100.0f};
 static const float k_corner_y[4] = {100.0f, -100.0f, 100.0f, -100.0f};
 
+/* corner k of the body at (x, y, th) in the world frame */
+static void body_corner(int k, float x, float y, float th, float *px, float *py)
+{
+    float c = ffr_cosf(th), s = ffr_sinf(th);
+    *px = x + c * k_corner_x[k] - s * k_corner_y[k];
+    *py = y + s * k_corner_x[k] + c * k_corner_y[k];
+}
+
 static int body_clear(const rig_walls_t *w, float x, float y, float th)
 {
-    const float *bx = k_corner_x, *by = k_corner_y;
-    float c = ffr_cosf(th), s = ffr_sinf(th);
     int k;
     for (k = 0; k < 4; ++k) {
-        float px = x + c * bx[k] - s * by[k];
-        float py = y + s * bx[k] + c * by[k];
+        float px, py;
+        body_corner(k, x, y, th, &px, &py);
         if (py >= w->left_y || py <= w->right_y || (w->ahead_x != 0.0f && px >= w->ahead_x)) {
             return 0;
         }
@@ -1734,12 +1740,10 @@ TEST(a_straight_escape_back_between_walls_beside_goes_its_length)
 /* every corner of the body at (x, y, th) inside every wall of `box` */
 static int box_clear(const float box[][3], int walls, float x, float y, float th)
 {
-    const float *bx = k_corner_x, *by = k_corner_y;
-    float c = ffr_cosf(th), s = ffr_sinf(th);
     int j, k;
     for (k = 0; k < 4; ++k) {
-        float px = x + c * bx[k] - s * by[k];
-        float py = y + s * bx[k] + c * by[k];
+        float px, py;
+        body_corner(k, x, y, th, &px, &py);
         for (j = 0; j < walls; ++j) {
             if (px * box[j][0] + py * box[j][1] >= box[j][2]) {
                 return 0;
@@ -1768,6 +1772,7 @@ static int orient_in_box(const ffr_config_t *cfg, const float box[][3], int wall
         if (r.out.state != FFR_ST_ORIENT && i > 2) {
             break;
         }
+        /* PH_ESCAPE, the S's first arc, forward */
         *s_forward |= r.st.orient.phase == 8u && r.st.orient.leg == 1u && !r.st.orient.reverse;
         clear &= box_clear(box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
     }

@@ -2,16 +2,23 @@
 #include "rig.h"
 #include "unit.h"
 
+/* a step's start with no wall in sight: the default config, every ranger
+ * reading nothing, the openings reset */
+static void fresh_step(ffr_config_t *cfg, ffr_openings_t *op, float ir[FFR_IR_COUNT])
+{
+    ffr_config_default(cfg);
+    rig_no_walls(cfg, ir);
+    ffr_openings_reset(op);
+}
+
 TEST(open_from_the_start_is_no_opening)
 {
     ffr_config_t cfg;
     ffr_openings_t op;
     float ir[FFR_IR_COUNT];
     float d = 0.0f;
-    ffr_config_default(&cfg);
-    rig_no_walls(&cfg, ir);
     /* no wall seen, so no opening (a corridor behind a junction is not a door) */
-    ffr_openings_reset(&op);
+    fresh_step(&cfg, &op, ir);
     rig_travel(&op, &cfg, ir, &d, 50);
     CHECK(!ffr_opening(&op, FFR_SIDE_LEFT));
 }
@@ -22,10 +29,8 @@ TEST(a_wall_then_open_is_an_opening_and_stays_one)
     ffr_openings_t op;
     float ir[FFR_IR_COUNT];
     float d = 0.0f;
-    ffr_config_default(&cfg);
-    rig_no_walls(&cfg, ir);
     /* a wall for 150 mm, then open */
-    ffr_openings_reset(&op);
+    fresh_step(&cfg, &op, ir);
     ir[FFR_IR_LF] = 226.0f;
     rig_travel(&op, &cfg, ir, &d, 50);
     CHECK(!ffr_opening(&op, FFR_SIDE_LEFT));
@@ -56,9 +61,7 @@ TEST(a_dropout_counts_half)
     ffr_openings_t op;
     float ir[FFR_IR_COUNT];
     float d = 0.0f;
-    ffr_config_default(&cfg);
-    rig_no_walls(&cfg, ir);
-    ffr_openings_reset(&op);
+    fresh_step(&cfg, &op, ir);
     ir[FFR_IR_LF] = 226.0f;
     rig_travel(&op, &cfg, ir, &d, 50);
     ir[FFR_IR_LF] = FFR_IR_NONE(&cfg);
@@ -77,9 +80,7 @@ TEST(a_hit_jumping_out_is_past_the_wall_end_a_drift_is_followed)
     float ir[FFR_IR_COUNT];
     float d = 0.0f;
     int i;
-    ffr_config_default(&cfg);
-    rig_no_walls(&cfg, ir);
-    ffr_openings_reset(&op);
+    fresh_step(&cfg, &op, ir);
     ir[FFR_IR_LF] = 226.0f;
     rig_travel(&op, &cfg, ir, &d, 50);
     ir[FFR_IR_LF] = 226.0f + 100.0f / 0.70710678f;
@@ -116,9 +117,7 @@ TEST(a_wall_across_behind_receding_is_no_wall_seen)
     float ir[FFR_IR_COUNT];
     float d = 0.0f;
     int i;
-    ffr_config_default(&cfg);
-    rig_no_walls(&cfg, ir);
-    ffr_openings_reset(&op);
+    fresh_step(&cfg, &op, ir);
     for (i = 0; i < 60; ++i, d += 3.0f) {
         ir[FFR_IR_RR] = 188.0f + 1.41421356f * d;
         ffr_openings_update(&op, &cfg, rig_geom(&g, &cfg, ir), ir, d, 3.0f, FFR_SIDE_RIGHT);
@@ -320,9 +319,7 @@ TEST(gaps_a_spike_is_no_wall_and_a_dropout_no_opening)
     float ir[FFR_IR_COUNT];
     float d = 0.0f;
     int i;
-    ffr_config_default(&cfg);
-    rig_no_walls(&cfg, ir);
-    ffr_openings_reset(&op);
+    fresh_step(&cfg, &op, ir);
     /* open, then one short reading beside (a spike) among open ones: no wall,
      * no opening counted */
     for (i = 0; i < 60; ++i, d += 3.0f) {
