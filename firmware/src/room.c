@@ -106,6 +106,13 @@ enum {
  * 8-13 x; a far flame at the side, 3 x, is left to the approach's steering
  * as before, a full turn costing 2.4 s) */
 #define SCAN_TRAIL_ENTRY_X 6.0f
+/* chosen: ...or a peak at least this (x flame_detect) that the scan's first
+ * reading has fallen below SCAN_PAST_PEAK of: passed and fading (the 2001
+ * plan's candles beside room 3's door: peaks of 5.3 x, the scan starting at
+ * 2.2 x). A weaker peak not yet fallen is a flame still ahead (the 2004
+ * arena's, 14 degrees off: with 4 x alone 121 of 2,000 realistic missions
+ * took up to 4.8 s longer, and a fresh +-2.5 cm start lost one) */
+#define SCAN_TRAIL_FADED_X 4.0f
 /* backing out, the scan point reached within this (mm) */
 #define BACK_AT_SCAN_MM 15.0f
 /* backing out after a detour: a point passed this near counts as reached
@@ -357,7 +364,9 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
     }
     if (r->scan_trail == SCAN_TRAIL_UNKNOWN) {
         /* its first reading: the tail of a flame behind the way it turns? */
-        r->scan_trail = (uint8_t)(r->entry_peak >= SCAN_TRAIL_ENTRY_X * cfg->flame_detect
+        r->scan_trail = (uint8_t)((r->entry_peak >= SCAN_TRAIL_ENTRY_X * cfg->flame_detect
+                                   || (r->entry_peak >= SCAN_TRAIL_FADED_X * cfg->flame_detect
+                                       && sig < SCAN_PAST_PEAK * r->entry_peak))
                                   && ffr_scan_starts_trailing(cfg, dir, (float)t->in->flame[0],
                                                               (float)t->in->flame[1], sig));
     }

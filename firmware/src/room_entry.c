@@ -35,9 +35,12 @@
 /* chosen: the balance (left - right over the sum) beyond which the flame is
  * on one side; the sensors' views overlap straight ahead, where it is ~0 */
 #define TRAIL_BAL 0.25f
-/* chosen: the scan's first reading at least this (x flame_detect; room.c
- * SCAN_SURE, no wall's reflection) for its side to count */
-#define TRAIL_SIG_X 2.0f
+/* chosen: the scan's first reading at least this (x flame_detect: a flame
+ * detected) for its side to count. Only asked after an entry that passed
+ * the flame near (room.c): a flame 50-60 degrees to the side, at the edge
+ * of the sensors' view, reads 1.4-2.2 x there (2001 plan, room 3's candles
+ * beside the door); at 2 x those scans stopped at once, 50 degrees off */
+#define TRAIL_SIG_X 1.0f
 /* the flame near, x flame_detect (room.c FLAME_NEAR) */
 #define AHEAD_FLAME_X 4.0f
 /* chosen: a reading up to this (mm off the ranger) is near enough to watch

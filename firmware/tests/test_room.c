@@ -333,14 +333,16 @@ TEST(a_front_ranger_folding_back_stops_the_approach)
 
 TEST(a_scan_begun_just_past_a_near_flame_turns_on_to_it)
 {
-    /* the scan turns left; at its start a near flame reads strong on the
-     * right sensor only and fades as the turn goes on: after an entry that
-     * passed the flame near (its peak 10 x flame_detect) that is no peak
-     * passed, the scan turns on. Without such an entry, or with the flame
-     * far at the start (1.5 x flame_detect), the early stop as before. */
-    static const uint16_t right[] = {700u, 700u, 275u};
-    static const float entry_x[] = {10.0f, 0.0f, 10.0f};
-    static const int turns_on[] = {1, 0, 0};
+    /* the scan turns left; at its start a flame reads on the right sensor
+     * only and fades as the turn goes on. After an entry that passed the
+     * flame near (its peak 10 x flame_detect) that is no peak passed, the
+     * scan turns on: strong at the start (4.5 x) or at the edge of the
+     * sensors' view (2 x). After a peak of 5 x, only if the start has
+     * fallen below 0.6 of it (2 x; at 4.5 x the flame is still ahead). No
+     * such entry (none, or a peak of 3 x): the early stop as before. */
+    static const uint16_t right[] = {700u, 700u, 275u, 700u, 275u, 275u};
+    static const float entry_x[] = {10.0f, 0.0f, 10.0f, 5.0f, 5.0f, 3.0f};
+    static const int turns_on[] = {1, 0, 1, 0, 1, 0};
     unsigned k;
     for (k = 0; k < sizeof(right) / sizeof(right[0]); ++k) {
         ffr_config_t cfg;
@@ -383,7 +385,8 @@ TEST(the_side_of_a_flame_and_a_flame_passed_by)
     CHECK(ffr_scan_starts_trailing(&cfg, -1.0f, 50.0f, 600.0f, 650.0f) == 0);
     CHECK(ffr_scan_starts_trailing(&cfg, -1.0f, 600.0f, 50.0f, 650.0f) == 1);
     CHECK(ffr_scan_starts_trailing(&cfg, 1.0f, 330.0f, 320.0f, 650.0f) == 0); /* ahead */
-    CHECK(ffr_scan_starts_trailing(&cfg, 1.0f, 20.0f, 300.0f, 320.0f) == 0);  /* below 2 x */
+    CHECK(ffr_scan_starts_trailing(&cfg, 1.0f, 20.0f, 180.0f, 200.0f) == 1);  /* 1.2 x */
+    CHECK(ffr_scan_starts_trailing(&cfg, 1.0f, 20.0f, 140.0f, 160.0f) == 0);  /* below 1 x */
     /* passed by: within reach (8 x), then below 0.6 of the peak; not before
      * (a flicker of 30 % is no passing) */
     for (i = 0; i < 20; ++i) {
