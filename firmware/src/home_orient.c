@@ -1493,6 +1493,31 @@ void ffr_orient_after_shift(ffr_state_t *st)
     o->phase = PH_ESCAPE;
 }
 
+/* A shift driven backward is the sweep's reading of the wall behind from
+ * afar: a part reading it long backed the robot to within its turning
+ * radius of that wall (+-2.5 cm start seeds 2297, 2377, 3624: 290-310 mm
+ * back, both rear rangers at their span's bottom) and the aim's turn met it.
+ * It stops where the rear pair's chord, square to the shift (a wall across
+ * behind), is within the turning radius + CLEAR_MARGIN_MM of the axle and
+ * has come REAR_NEARING_MM nearer than the farthest it read since the
+ * heading settled (walls beside, a hallway's, do not come nearer). */
+static int shift_back_blocked(ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    const ffr_ir_geom_t *g = &st->ir_geom;
+    ffr_home_orient_t *o = &st->orient;
+    float r = rear_chord_room(st);
+    float rear = -0.5f * (cfg->ir_x_mm[FFR_IR_LR] + cfg->ir_x_mm[FFR_IR_RR]);
+    float dx = g->hit_x_mm[FFR_IR_LR] - g->hit_x_mm[FFR_IR_RR], dy = g->hit_y_mm[FFR_IR_LR] - g->hit_y_mm[FFR_IR_RR];
+    if (r >= 65535.0f || ffr_absf(dx) > 0.176f * dy || ffr_absf(st->odo.heading_rad - o->target_rad) > 5.0f * FFR_DEG) {
+        return 0;
+    }
+    if (o->back_chord_mm >= 65535.0f || r > o->back_chord_mm) {
+        o->back_chord_mm = r;
+    }
+    return r + rear < ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM && r < o->back_chord_mm - REAR_NEARING_MM;
+}
+
 /* odometry's frame turned by -rot about its origin: `rot` becomes heading 0 */
 static void reframe(ffr_odometry_t *odo, float rot)
 {
@@ -1674,11 +1699,12 @@ int ffr_orient_step(ffr_state_t *st)
         }
         ffr_stop(st);
         o->goal_mm += st->odo.dist_mm; /* the shift's length, from here */
+        o->back_chord_mm = 65535.0f;
         o->phase = PH_SHIFT_DRIVE;
     }
     if (o->phase == PH_SHIFT_DRIVE) {
         float left = o->goal_mm - st->odo.dist_mm;
-        int blocked = !o->reverse && ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm;
+        int blocked = o->reverse ? shift_back_blocked(st) : ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm;
         if (left > 0.0f && !blocked) {
             float v = ffr_stopping_speed(left, cfg->cruise_speed_mm_s);
             ffr_drive_heading(st, o->target_rad, o->reverse ? -v : v);

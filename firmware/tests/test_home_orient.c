@@ -1779,6 +1779,64 @@ static int orient_in_box(const ffr_config_t *cfg, const float box[][3], int wall
     return clear;
 }
 
+/* A shift driven backward (phase 2, its turn done at once, then 3) of
+ * goal_mm among the walls of `box`, from the origin heading 0, the rear
+ * right part reading rr_long mm long: where it stopped (odometry x); *clear
+ * 0 if a corner met a wall on the way */
+static float shift_back(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float rr_long,
+                        float goal_mm, int *clear)
+{
+    float ir[FFR_IR_COUNT];
+    int i;
+    rig_init(r, cfg);
+    box_readings_rr(cfg, box, walls, rr_long, 0.0f, 0.0f, 0.0f, ir);
+    feed(r, cfg, ir);
+    rig_tick(r); /* the readings in */
+    ffr_orient_begin(&r->st);
+    r->st.orient.phase = 2u; /* PH_SHIFT_TURN, already facing the way: the drive next */
+    r->st.orient.reverse = 1u;
+    r->st.orient.target_rad = r->st.odo.heading_rad;
+    r->st.orient.goal_mm = goal_mm;
+    r->st.started = 1;
+    *clear = 1;
+    for (i = 0; i < 800 && (r->st.orient.phase == 2u || r->st.orient.phase == 3u); ++i) {
+        box_readings_rr(cfg, box, walls, rr_long, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad, ir);
+        feed(r, cfg, ir);
+        rig_tick(r);
+        *clear &= box_clear(box, walls, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad);
+    }
+    CHECK(r->st.orient.phase != 2u && r->st.orient.phase != 3u);
+    return r->st.odo.x_mm;
+}
+
+TEST(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind)
+{
+    /* +-2.5 cm start seeds 2297, 2377, 3624 (`ffr sweep --arena-jitter 0.025
+     * --start random --noise datasheet --rooms 1 --candles default`): the
+     * sweep read the wall behind long, and the shift backed 290-310 mm, to
+     * within the turning radius of it, with both rear rangers at their
+     * span's bottom; the aim's turn met it. Here the wall 380 mm behind the
+     * axle and a 300 mm shift (walls 230 mm off both sides, the rear right
+     * part 25 mm long): it stops where the rear pair's chord comes within
+     * the turning radius + 20 mm, the body clear of every wall. Along a
+     * hallway with nothing behind, the chord through the side walls' hits
+     * does not come nearer: the whole shift */
+    static const float box[3][3] = {{-1.0f, 0.0f, 380.0f}, {0.0f, 1.0f, 230.0f}, {0.0f, -1.0f, 230.0f}};
+    ffr_config_t cfg;
+    rig_t r;
+    float x, radius;
+    int clear;
+    ffr_config_default(&cfg);
+    radius = ffr_orient_turn_radius_mm(&cfg);
+    x = shift_back(&r, &cfg, box, 3, 25.0f, 300.0f, &clear);
+    CHECK(clear);
+    CHECK(380.0f + x >= radius);        /* room for the aim's turn */
+    CHECK(380.0f + x < radius + 60.0f); /* and not stopped long before */
+    x = shift_back(&r, &cfg, &box[1], 2, 0.0f, 300.0f, &clear);
+    CHECK(clear);
+    CHECK(x < -290.0f);
+}
+
 TEST(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside)
 {
     /* fresh +-2.5 cm start seed 703: the south wall ahead-left, the east
@@ -1853,4 +1911,5 @@ SUITE(home_orient,
       TEST_REF(a_straight_escape_back_stops_as_the_rear_pairs_chord_nears),
       TEST_REF(a_straight_escape_back_between_walls_beside_goes_its_length),
       TEST_REF(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside),
-      TEST_REF(a_wall_beside_with_little_floor_ahead_still_gets_the_s));
+      TEST_REF(a_wall_beside_with_little_floor_ahead_still_gets_the_s),
+      TEST_REF(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind));
