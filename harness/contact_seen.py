@@ -224,8 +224,9 @@ def span_report(n_rows: int, counts: dict[str, tuple[int, int]]) -> str:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    from harness.atomic import check_target, write_text_atomic
+    from harness.atomic import write_text_atomic
     from harness.cli_args import EXIT_INPUT, UsageError, _Parser
+    from harness.failure_places import rows_target_problem
     from sim_plant.errors import FfrInputError
 
     ap = _Parser(prog="python -m harness.contact_seen", description=__doc__.split("\n")[0])
@@ -240,12 +241,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             raise UsageError(f"--near = {args.near}: expected a distance in mm above 0")
         if args.span < 0:
             raise UsageError(f"--span = {args.span}: expected a number of rows, 0 or more")
-        if args.rows is not None:
-            why = check_target(args.rows)
-            if why is None and args.rows.resolve() == args.csv.resolve():
-                why = "it is the sweep's own CSV"
-            if why:
-                raise UsageError(f"--rows = {str(args.rows)!r}: {why}")
+        if args.rows is not None and (why := rows_target_problem(args.rows, args.csv)):
+            raise UsageError(f"--rows = {str(args.rows)!r}: {why}")
         n_failed, contacts = contacts_of(args.csv, args.near / 1000.0)
         span = span_counts(args.csv, args.span) if args.span else None
     except OSError as exc:

@@ -15,7 +15,6 @@ the firmware library the harness loads (``FFR_FIRMWARE_LIB``).
 
 from __future__ import annotations
 
-import argparse
 import csv
 import math
 import shlex
@@ -64,6 +63,17 @@ def sweep_rows(path: Path, needed: Sequence[str] = NEEDED) -> list[dict[str, str
             return list(reader)
     except UnicodeDecodeError as exc:
         raise ValueError(f"{path}: not a CSV text file ({exc.reason} at byte {exc.start})") from None
+
+
+def rows_target_problem(rows: Path, csv_path: Path) -> str | None:
+    """Why a tool's ``--rows`` file cannot be written (check_target's reasons, or it is the sweep's
+    own CSV), or None: asked before any mission runs again."""
+    from harness.atomic import check_target
+
+    why = check_target(rows)
+    if why is None and rows.resolve() == csv_path.resolve():
+        why = "it is the sweep's own CSV"
+    return why
 
 
 def failed(row: dict[str, str]) -> bool:
@@ -116,11 +126,20 @@ def place_of(row: dict[str, str]) -> Place:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m harness.failure_places", description=__doc__.split("\n")[0])
+    from harness.atomic import write_text_atomic
+    from harness.cli_args import UsageError, _Parser
+
+    ap = _Parser(prog="python -m harness.failure_places", description=__doc__.split("\n")[0])
     ap.add_argument("csv", type=Path)
     ap.add_argument("--skip-seeds", default="")
     ap.add_argument("--rows", type=Path)
-    args = ap.parse_args(argv)
+    try:
+        args = ap.parse_args(argv)
+        if args.rows is not None and (why := rows_target_problem(args.rows, args.csv)):
+            raise UsageError(f"--rows = {str(args.rows)!r}: {why}")
+    except UsageError as e:
+        print(f"python -m harness.failure_places: error: {e}", file=sys.stderr)
+        return 2
     try:
         skip = {int(s) for s in args.skip_seeds.split(",") if s.strip()}
     except ValueError:
@@ -137,11 +156,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"{args.csv}: {e}", file=sys.stderr)
         return 2
     if args.rows:
-        with args.rows.open("w") as fh:
-            for p in places:
-                fh.write("\t".join([p.room, str(p.seed), f"{p.candle[0]},{p.candle[1]}", str(p.step), p.state,
-                                    "C" if p.contact else "-", "{:.3f},{:.3f},{:.0f}".format(*p.pose),
-                                    f"{p.t_s:.1f}", p.outcome, p.detail]) + "\n")
+        text = "".join("\t".join([p.room, str(p.seed), f"{p.candle[0]},{p.candle[1]}", str(p.step), p.state,
+                                  "C" if p.contact else "-", "{:.3f},{:.3f},{:.0f}".format(*p.pose),
+                                  f"{p.t_s:.1f}", p.outcome, p.detail]) + "\n" for p in places)
+        try:
+            write_text_atomic(args.rows, text)  # whole or not at all
+        except OSError as e:
+            print(f"python -m harness.failure_places: error: --rows = {str(args.rows)!r}: {e.strerror}",
+                  file=sys.stderr)
+            return 2
     print(f"{len(places)} failed missions (of {len(rows)} failed rows; seeds left out: "
           f"{','.join(map(str, sorted(skip))) or 'none'})")
     print("missions\troom\tstep\tstate\tcontact or detail")

@@ -186,8 +186,9 @@ def _bins(text: str) -> tuple[float, ...]:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    from harness.atomic import check_target, write_text_atomic
+    from harness.atomic import write_text_atomic
     from harness.cli_args import EXIT_INPUT, UsageError, _Parser
+    from harness.failure_places import rows_target_problem
     from sim_plant.errors import FfrInputError
 
     ap = _Parser(prog="python -m harness.start_room", description=__doc__.split("\n")[0])
@@ -198,12 +199,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         args = ap.parse_args(argv)
         bins = _bins(args.bins)
-        if args.rows is not None:
-            why = check_target(args.rows)
-            if why is None and args.rows.resolve() == args.csv.resolve():
-                why = "it is the sweep's own CSV"
-            if why:
-                raise UsageError(f"--rows = {str(args.rows)!r}: {why}")
+        if args.rows is not None and (why := rows_target_problem(args.rows, args.csv)):
+            raise UsageError(f"--rows = {str(args.rows)!r}: {why}")
         starts = starts_of(args.csv)
     except OSError as exc:
         print(f"python -m harness.start_room: error: {args.csv}: {exc.strerror}", file=sys.stderr)

@@ -1498,9 +1498,13 @@ void ffr_orient_after_shift(ffr_state_t *st)
  * radius of that wall (+-2.5 cm start seeds 2297, 2377, 3624: 290-310 mm
  * back, both rear rangers at their span's bottom) and the aim's turn met it.
  * It stops where the rear pair's chord, square to the shift (a wall across
- * behind), is within the turning radius + CLEAR_MARGIN_MM of the axle and
- * has come REAR_NEARING_MM nearer than the farthest it read since the
- * heading settled (walls beside, a hallway's, do not come nearer). */
+ * behind), is within the turning radius of the axle and has come
+ * REAR_NEARING_MM nearer than the farthest it read since the heading
+ * settled (walls beside, a hallway's, do not come nearer); the look after
+ * the shift (ffr_orient_after_shift) then measures that wall and moves
+ * off it. Not at the radius + CLEAR_MARGIN_MM: that cut short shifts that
+ * had room for the aim (the 2001 plan's jittered start seed 54, 23 mm
+ * short; its route then missed a door). */
 static int shift_back_blocked(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -1515,7 +1519,7 @@ static int shift_back_blocked(ffr_state_t *st)
     if (o->back_chord_mm >= 65535.0f || r > o->back_chord_mm) {
         o->back_chord_mm = r;
     }
-    return r + rear < ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM && r < o->back_chord_mm - REAR_NEARING_MM;
+    return r + rear < ffr_orient_turn_radius_mm(cfg) && r < o->back_chord_mm - REAR_NEARING_MM;
 }
 
 /* odometry's frame turned by -rot about its origin: `rot` becomes heading 0 */

@@ -1781,12 +1781,13 @@ static int orient_in_box(const ffr_config_t *cfg, const float box[][3], int wall
 
 /* A shift driven backward (phase 2, its turn done at once, then 3) of
  * goal_mm among the walls of `box`, from the origin heading 0, the rear
- * right part reading rr_long mm long: where it stopped (odometry x); *clear
- * 0 if a corner met a wall on the way */
+ * right part reading rr_long mm long, and the orientation on to its end
+ * (the look after the shift, the aim's turn): where the shift stopped
+ * (odometry x); *clear 0 if a corner met a wall on the way */
 static float shift_back(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float rr_long,
                         float goal_mm, int *clear)
 {
-    float ir[FFR_IR_COUNT];
+    float ir[FFR_IR_COUNT], x_shift = 0.0f;
     int i;
     rig_init(r, cfg);
     box_readings_rr(cfg, box, walls, rr_long, 0.0f, 0.0f, 0.0f, ir);
@@ -1799,14 +1800,20 @@ static float shift_back(rig_t *r, const ffr_config_t *cfg, const float box[][3],
     r->st.orient.goal_mm = goal_mm;
     r->st.started = 1;
     *clear = 1;
-    for (i = 0; i < 800 && (r->st.orient.phase == 2u || r->st.orient.phase == 3u); ++i) {
+    for (i = 0; i < 1500 && r->st.state == FFR_ST_ORIENT; ++i) {
         box_readings_rr(cfg, box, walls, rr_long, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad, ir);
         feed(r, cfg, ir);
         rig_tick(r);
+        if (r->st.state != FFR_ST_ORIENT) {
+            break; /* odometry's frame turned to the route's way: the rig's walls are no longer in it */
+        }
         *clear &= box_clear(box, walls, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad);
+        if (r->st.orient.phase == 2u || r->st.orient.phase == 3u) {
+            x_shift = r->st.odo.x_mm;
+        }
     }
-    CHECK(r->st.orient.phase != 2u && r->st.orient.phase != 3u);
-    return r->st.odo.x_mm;
+    CHECK(r->st.state != FFR_ST_ORIENT); /* the aim's turn done: the route begins */
+    return x_shift;
 }
 
 TEST(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind)
@@ -1818,20 +1825,20 @@ TEST(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind)
      * span's bottom; the aim's turn met it. Here the wall 380 mm behind the
      * axle and a 300 mm shift (walls 230 mm off both sides, the rear right
      * part 25 mm long): it stops where the rear pair's chord comes within
-     * the turning radius + 20 mm, the body clear of every wall. Along a
-     * hallway with nothing behind, the chord through the side walls' hits
-     * does not come nearer: the whole shift */
+     * the turning radius, the look after the shift measures the wall and
+     * moves away from it, and the aim's turn has room: no corner meets a
+     * wall. Along a hallway with nothing behind, the chord through the
+     * side walls' hits does not come nearer: the whole shift */
     static const float box[3][3] = {{-1.0f, 0.0f, 380.0f}, {0.0f, 1.0f, 230.0f}, {0.0f, -1.0f, 230.0f}};
     ffr_config_t cfg;
     rig_t r;
-    float x, radius;
+    float x;
     int clear;
     ffr_config_default(&cfg);
-    radius = ffr_orient_turn_radius_mm(&cfg);
     x = shift_back(&r, &cfg, box, 3, 25.0f, 300.0f, &clear);
     CHECK(clear);
-    CHECK(380.0f + x >= radius);        /* room for the aim's turn */
-    CHECK(380.0f + x < radius + 60.0f); /* and not stopped long before */
+    CHECK(x > -300.0f + 40.0f); /* cut short */
+    CHECK(380.0f + x < ffr_orient_turn_radius_mm(&cfg) + 40.0f); /* not long before */
     x = shift_back(&r, &cfg, &box[1], 2, 0.0f, 300.0f, &clear);
     CHECK(clear);
     CHECK(x < -290.0f);

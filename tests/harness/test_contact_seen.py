@@ -2,27 +2,14 @@
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from harness import contact_seen
-
-# start seed 105 of `--start random` (tests/harness/test_start_room.py): the front-right corner
-# 1.6 mm off the south hallway wall. The right front ranger reads that wall folded back from the
-# start on (a true range under 50 mm), and the orientation's first move puts the corner on it.
-NEAR = "ffr run --candle 1.83,1.53 --seed 105 --start random"
-
-
-def _csv(path: Path, rows: list[tuple[int, bool, str]]) -> Path:
-    with path.open("w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["id", "room", "seed", "success", "replay"])
-        for k, (seed, ok, replay) in enumerate(rows):
-            w.writerow([k, 1, seed, ok, replay])
-    return path
+from tests.harness.conftest import NEAR_WALL_START as NEAR
+from tests.harness.conftest import sweep_csv as _csv
 
 
 def test_the_point_touched_and_the_corner_that_touched_it() -> None:

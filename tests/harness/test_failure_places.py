@@ -73,3 +73,15 @@ def test_a_row_whose_replay_is_not_ffr_run_is_one_line_and_status_2(tmp_path: Pa
     assert main([str(bad)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "replay" in err and "rm -rf" in err
+
+
+def test_a_rows_file_that_cannot_be_written_is_one_line_before_any_run(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    src = _csv(tmp_path / "s.csv", [ROW])
+    for rows, why in ((tmp_path, "is a directory"), (src, "own CSV")):
+        assert main([str(src), "--rows", str(rows)]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "--rows" in err and why in err
+    assert src.read_text().startswith("room,")  # the sweep's CSV untouched
+    assert main([str(src), "--no-such-flag"]) == 2
+    assert capsys.readouterr().err.count("\n") == 1

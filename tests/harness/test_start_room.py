@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 
@@ -11,18 +10,8 @@ import pytest
 from harness import start_room
 from harness.failure_places import replay_of
 from harness.start_pose import footprint
-
-# start seed 105 of `--start random`: the front-right corner 1.6 mm off the south hallway wall
-NEAR = "ffr run --candle 1.83,1.53 --seed 105 --start random"
-
-
-def _csv(path: Path, rows: list[tuple[int, bool, str]]) -> Path:
-    with path.open("w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(["id", "room", "seed", "success", "replay"])
-        for k, (seed, ok, replay) in enumerate(rows):
-            w.writerow([k, 1, seed, ok, replay])
-    return path
+from tests.harness.conftest import NEAR_WALL_START as NEAR
+from tests.harness.conftest import sweep_csv as _csv
 
 
 def test_the_gap_is_the_body_to_the_nearest_wall_as_drawn() -> None:
