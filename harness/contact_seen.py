@@ -224,9 +224,8 @@ def span_report(n_rows: int, counts: dict[str, tuple[int, int]]) -> str:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    from harness.atomic import write_text_atomic
     from harness.cli_args import EXIT_INPUT, UsageError, _Parser
-    from harness.failure_places import rows_target_problem
+    from harness.failure_places import rows_target_problem, write_rows
     from sim_plant.errors import FfrInputError
 
     ap = _Parser(prog="python -m harness.contact_seen", description=__doc__.split("\n")[0])
@@ -252,14 +251,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"python -m harness.contact_seen: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
     text = report(n_failed, contacts, args.near)
-    if args.rows is not None:
-        try:
-            write_text_atomic(args.rows, "\n".join("\t".join(f) for f in [list(HEADER)]
-                                                   + [fields(c) for c in contacts]) + "\n")
-        except OSError as exc:
-            print(f"python -m harness.contact_seen: error: --rows = {str(args.rows)!r}: {exc.strerror}",
-                  file=sys.stderr)
-            return EXIT_INPUT
+    if args.rows is not None and not write_rows("python -m harness.contact_seen", args.rows,
+                                                ["\t".join(f) for f in [list(HEADER), *map(fields, contacts)]]):
+        return EXIT_INPUT
     print(text)
     if span is not None:
         print(span_report(args.span, span))

@@ -76,6 +76,19 @@ def rows_target_problem(rows: Path, csv_path: Path) -> str | None:
     return why
 
 
+def write_rows(prog: str, rows: Path, lines: Sequence[str]) -> bool:
+    """A tool's ``--rows`` file: the tab-separated lines, whole or not at all. False after one line
+    on stderr (``prog: error: --rows = ...: why``) when it cannot be written."""
+    from harness.atomic import write_text_atomic
+
+    try:
+        write_text_atomic(rows, "".join(f"{line}\n" for line in lines))
+    except OSError as exc:
+        print(f"{prog}: error: --rows = {str(rows)!r}: {exc.strerror}", file=sys.stderr)
+        return False
+    return True
+
+
 def failed(row: dict[str, str]) -> bool:
     """A sweep row's mission did not succeed."""
     return row["success"].strip().lower() not in ("true", "1")
@@ -126,7 +139,6 @@ def place_of(row: dict[str, str]) -> Place:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    from harness.atomic import write_text_atomic
     from harness.cli_args import UsageError, _Parser
 
     ap = _Parser(prog="python -m harness.failure_places", description=__doc__.split("\n")[0])
@@ -155,16 +167,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except ValueError as e:
         print(f"{args.csv}: {e}", file=sys.stderr)
         return 2
-    if args.rows:
-        text = "".join("\t".join([p.room, str(p.seed), f"{p.candle[0]},{p.candle[1]}", str(p.step), p.state,
-                                  "C" if p.contact else "-", "{:.3f},{:.3f},{:.0f}".format(*p.pose),
-                                  f"{p.t_s:.1f}", p.outcome, p.detail]) + "\n" for p in places)
-        try:
-            write_text_atomic(args.rows, text)  # whole or not at all
-        except OSError as e:
-            print(f"python -m harness.failure_places: error: --rows = {str(args.rows)!r}: {e.strerror}",
-                  file=sys.stderr)
-            return 2
+    if args.rows and not write_rows("python -m harness.failure_places", args.rows, [
+            "\t".join([p.room, str(p.seed), f"{p.candle[0]},{p.candle[1]}", str(p.step), p.state,
+                       "C" if p.contact else "-", "{:.3f},{:.3f},{:.0f}".format(*p.pose), f"{p.t_s:.1f}",
+                       p.outcome, p.detail]) for p in places]):
+        return 2
     print(f"{len(places)} failed missions (of {len(rows)} failed rows; seeds left out: "
           f"{','.join(map(str, sorted(skip))) or 'none'})")
     print("missions\troom\tstep\tstate\tcontact or detail")

@@ -186,9 +186,8 @@ def _bins(text: str) -> tuple[float, ...]:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    from harness.atomic import write_text_atomic
     from harness.cli_args import EXIT_INPUT, UsageError, _Parser
-    from harness.failure_places import rows_target_problem
+    from harness.failure_places import rows_target_problem, write_rows
     from sim_plant.errors import FfrInputError
 
     ap = _Parser(prog="python -m harness.start_room", description=__doc__.split("\n")[0])
@@ -215,11 +214,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         lines += ["\t".join((str(s.seed), f"{s.pose[0]:.4f}", f"{s.pose[1]:.4f}", f"{s.pose[2]:.2f}",
                              f"{s.gap_mm:.1f}", f"{s.angle_deg:.1f}", f"{s.axle_mm:.1f}", str(s.missions),
                              str(s.failed))) for s in starts]
-        try:
-            write_text_atomic(args.rows, "\n".join(lines) + "\n")
-        except OSError as exc:
-            print(f"python -m harness.start_room: error: --rows = {str(args.rows)!r}: {exc.strerror}",
-                  file=sys.stderr)
+        if not write_rows("python -m harness.start_room", args.rows, lines):
             return EXIT_INPUT
     print(text)
     return 0

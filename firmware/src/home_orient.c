@@ -1341,34 +1341,47 @@ static float corner_room(const ffr_state_t *st)
     return room;
 }
 
+/* the rear pair (looking back, *a to the left, *b to the right), both
+ * reading a wall their hits can put a line through: 0 if not */
+static int rear_pair(const ffr_state_t *st, int *a, int *b)
+{
+    const ffr_ir_geom_t *g = &st->ir_geom;
+    int i;
+    *a = -1;
+    *b = -1;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if (g->beam_cos[i] < -0.5f && line_reading(&st->cfg, st->ir_mm[i])) {
+            if (g->beam_sin[i] > 0.3f) {
+                *a = i;
+            } else if (g->beam_sin[i] < -0.3f) {
+                *b = i;
+            }
+        }
+    }
+    return *a >= 0 && *b >= 0 && g->hit_y_mm[*a] - g->hit_y_mm[*b] >= 1.0f;
+}
+
 /* The rear pair's chord: the line through the two rear rangers' hits, how
  * far behind them it crosses the body's band (65535: not both measured).
  * Two walls meeting at a corner behind lie beyond it, a wall across behind
  * on it; two walls beside (a hallway) give the same readings, a chord that
  * does not come nearer as the robot backs along them. */
-static float rear_chord_room(const ffr_state_t *st)
+static float pair_chord_room(const ffr_state_t *st, int a, int b)
 {
     const ffr_config_t *cfg = &st->cfg;
     const ffr_ir_geom_t *g = &st->ir_geom;
-    int i, a = -1, b = -1;
     float k, xl, xr, rear;
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        if (g->beam_cos[i] < -0.5f && line_reading(cfg, st->ir_mm[i])) {
-            if (g->beam_sin[i] > 0.3f) {
-                a = i;
-            } else if (g->beam_sin[i] < -0.3f) {
-                b = i;
-            }
-        }
-    }
-    if (a < 0 || b < 0 || g->hit_y_mm[a] - g->hit_y_mm[b] < 1.0f) {
-        return 65535.0f;
-    }
     k = (g->hit_x_mm[b] - g->hit_x_mm[a]) / (g->hit_y_mm[b] - g->hit_y_mm[a]);
     xl = g->hit_x_mm[a] + (cfg->body_half_width_mm - g->hit_y_mm[a]) * k;
     xr = g->hit_x_mm[a] + (-cfg->body_half_width_mm - g->hit_y_mm[a]) * k;
     rear = 0.5f * (cfg->ir_x_mm[a] + cfg->ir_x_mm[b]);
     return rear - (xl > xr ? xl : xr);
+}
+
+static float rear_chord_room(const ffr_state_t *st)
+{
+    int a, b;
+    return rear_pair(st, &a, &b) ? pair_chord_room(st, a, b) : 65535.0f;
 }
 
 /* What a leg watches, set as it begins: a wall across at a slant ahead of
@@ -1510,10 +1523,16 @@ static int shift_back_blocked(ffr_state_t *st)
     const ffr_config_t *cfg = &st->cfg;
     const ffr_ir_geom_t *g = &st->ir_geom;
     ffr_home_orient_t *o = &st->orient;
-    float r = rear_chord_room(st);
-    float rear = -0.5f * (cfg->ir_x_mm[FFR_IR_LR] + cfg->ir_x_mm[FFR_IR_RR]);
-    float dx = g->hit_x_mm[FFR_IR_LR] - g->hit_x_mm[FFR_IR_RR], dy = g->hit_y_mm[FFR_IR_LR] - g->hit_y_mm[FFR_IR_RR];
-    if (r >= 65535.0f || ffr_absf(dx) > 0.176f * dy || ffr_absf(st->odo.heading_rad - o->target_rad) > 5.0f * FFR_DEG) {
+    float r, rear, dx, dy;
+    int a, b;
+    if (!rear_pair(st, &a, &b) || ffr_absf(st->odo.heading_rad - o->target_rad) > 5.0f * FFR_DEG) {
+        return 0;
+    }
+    r = pair_chord_room(st, a, b);
+    rear = -0.5f * (cfg->ir_x_mm[a] + cfg->ir_x_mm[b]); /* the pair behind the axle */
+    dx = g->hit_x_mm[a] - g->hit_x_mm[b];
+    dy = g->hit_y_mm[a] - g->hit_y_mm[b];
+    if (ffr_absf(dx) > 0.176f * dy) {
         return 0;
     }
     if (o->back_chord_mm >= 65535.0f || r > o->back_chord_mm) {

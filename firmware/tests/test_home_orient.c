@@ -1672,17 +1672,25 @@ static void box_readings_rr(const ffr_config_t *cfg, const float n[][3], int wal
     }
 }
 
+/* One tick of the rig among the walls of `box`: the readings at odometry's
+ * pose (the true one: the rig's wheels do not slip), the rear right part
+ * reading rr_long mm long */
+static void box_tick_rr(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float rr_long)
+{
+    float ir[FFR_IR_COUNT];
+    box_readings_rr(cfg, box, walls, rr_long, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad, ir);
+    feed(r, cfg, ir);
+    rig_tick(r);
+}
+
 /* A straight escape backward (phase 8, leg 0) among the walls of `box`,
  * from the origin heading 0, goal_mm to go: where it ended (odometry x) */
 static float straight_back(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float rr_long,
                            float goal_mm)
 {
-    float ir[FFR_IR_COUNT];
     int i;
     rig_init(r, cfg);
-    box_readings_rr(cfg, box, walls, rr_long, 0.0f, 0.0f, 0.0f, ir);
-    feed(r, cfg, ir);
-    rig_tick(r); /* the readings in */
+    box_tick_rr(r, cfg, box, walls, rr_long); /* the readings in */
     ffr_orient_begin(&r->st);
     r->st.orient.phase = 8u; /* PH_ESCAPE: straight (curvature 0), backward */
     r->st.orient.leg = 0u;
@@ -1693,9 +1701,7 @@ static float straight_back(rig_t *r, const ffr_config_t *cfg, const float box[][
     r->st.started = 1;
     ffr_orient_watch_leg(&r->st); /* as the escape's start does */
     for (i = 0; i < 600 && r->st.orient.phase == 8u; ++i) {
-        box_readings_rr(cfg, box, walls, rr_long, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad, ir);
-        feed(r, cfg, ir);
-        rig_tick(r);
+        box_tick_rr(r, cfg, box, walls, rr_long);
     }
     CHECK(r->st.orient.phase != 8u);
     return r->st.odo.x_mm;
@@ -1787,12 +1793,10 @@ static int orient_in_box(const ffr_config_t *cfg, const float box[][3], int wall
 static float shift_back(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float rr_long,
                         float goal_mm, int *clear)
 {
-    float ir[FFR_IR_COUNT], x_shift = 0.0f;
+    float x_shift = 0.0f;
     int i;
     rig_init(r, cfg);
-    box_readings_rr(cfg, box, walls, rr_long, 0.0f, 0.0f, 0.0f, ir);
-    feed(r, cfg, ir);
-    rig_tick(r); /* the readings in */
+    box_tick_rr(r, cfg, box, walls, rr_long); /* the readings in */
     ffr_orient_begin(&r->st);
     r->st.orient.phase = 2u; /* PH_SHIFT_TURN, already facing the way: the drive next */
     r->st.orient.reverse = 1u;
@@ -1801,9 +1805,7 @@ static float shift_back(rig_t *r, const ffr_config_t *cfg, const float box[][3],
     r->st.started = 1;
     *clear = 1;
     for (i = 0; i < 1500 && r->st.state == FFR_ST_ORIENT; ++i) {
-        box_readings_rr(cfg, box, walls, rr_long, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad, ir);
-        feed(r, cfg, ir);
-        rig_tick(r);
+        box_tick_rr(r, cfg, box, walls, rr_long);
         if (r->st.state != FFR_ST_ORIENT) {
             break; /* odometry's frame turned to the route's way: the rig's walls are no longer in it */
         }
