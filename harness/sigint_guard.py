@@ -21,27 +21,30 @@ from types import FrameType
 
 
 @contextmanager
-def sigint_deferred() -> Iterator[None]:
+def sigint_deferred() -> Iterator[threading.Event]:
     """SIGINT noted, not acted on, inside the block; acted on at its end (main thread only: Python
     runs signal handlers there alone). A handler of SIG_IGN or SIG_DFL is left as it is: neither
-    raises in Python code (a forked sweep worker ignores Ctrl-C)."""
+    raises in Python code (a forked sweep worker ignores Ctrl-C). The block gets an event set when
+    a SIGINT is noted, so a loop inside can stop early on its own terms."""
+    noted = threading.Event()
     if threading.current_thread() is not threading.main_thread():
-        yield
+        yield noted
         return
     before = signal.getsignal(signal.SIGINT)
     if not callable(before):
-        yield
+        yield noted
         return
     got: list[FrameType | None] = []
 
     def note(_signum: int, frame: FrameType | None) -> None:
         got.append(frame)
+        noted.set()
 
     # signal.signal runs any handler already pending first: a Ctrl-C from before the block is
     # raised here, outside it
     signal.signal(signal.SIGINT, note)
     try:
-        yield
+        yield noted
     finally:
         signal.signal(signal.SIGINT, before)
         if got:

@@ -47,6 +47,7 @@ from typing import Any
 import numpy as np
 
 from harness.atomic import write_bytes_atomic
+from harness.sigint_guard import sigint_deferred
 from sim_plant.errors import FfrInputError
 
 ROW_FIELDS = ["id", "room", "candle_x", "candle_y", "seed", "noise", "start_x", "start_y", "start_heading_deg",
@@ -442,19 +443,30 @@ def run_forked(jobs: Sequence[dict[str, Any]], n: int, progress: Callable[[int],
             done(run_chunk([j]))
         return sorted(rows, key=lambda r: r["id"])
     pool = None
-    try:
-        # Ctrl-C held back while the workers are forked: one that came before a worker ran its
-        # initializer would kill it half-started, and one in the middle of Pool() would leave
-        # a pool nobody stops (the exit then hangs on it); it is raised right after instead
-        with _sigint_held():
-            pool = multiprocessing.get_context("fork").Pool(n, initializer=_forked_worker_init)
-        for part in pool.imap_unordered(run_chunk, chunked(rest, n)):
-            done(part)
-        pool.close()
-    finally:
-        if pool is not None:
-            pool.terminate()
-            pool.join()
+    # Ctrl-C is only noted while the pool runs, and the loop below stops on it: raised as an
+    # exception it could land inside Pool's own code (between a lock's acquire and its `with`),
+    # leaving a lock held that terminate() then waits on for ever. It is raised after the pool
+    # has stopped, with every finished chunk's rows already in `sink`.
+    with sigint_deferred() as interrupted:
+        try:
+            # Ctrl-C held back while the workers are forked: one that came before a worker ran its
+            # initializer would kill it half-started
+            with _sigint_held():
+                pool = multiprocessing.get_context("fork").Pool(n, initializer=_forked_worker_init)
+            parts = pool.imap_unordered(run_chunk, chunked(rest, n))
+            while not interrupted.is_set():
+                try:
+                    part = parts.next(timeout=0.1)
+                except multiprocessing.TimeoutError:
+                    continue
+                except StopIteration:
+                    break
+                done(part)
+            pool.close()
+        finally:
+            if pool is not None:
+                pool.terminate()
+                pool.join()
     return sorted(rows, key=lambda r: r["id"])
 
 

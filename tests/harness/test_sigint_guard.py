@@ -109,3 +109,11 @@ def test_an_ignored_ctrl_c_stays_ignored() -> None:
         assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
     finally:
         signal.signal(signal.SIGINT, before)
+
+
+@pytest.mark.usefixtures("default_sigint")
+def test_the_block_is_told_of_a_ctrl_c_as_it_is_noted() -> None:
+    with pytest.raises(KeyboardInterrupt), sigint_deferred() as noted:
+        assert not noted.is_set()
+        os.kill(os.getpid(), signal.SIGINT)
+        assert noted.is_set()  # a loop inside can stop on its own terms before the end raises
