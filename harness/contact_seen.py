@@ -1,6 +1,6 @@
 """Did a ranger see the wall a failed mission touched, and at what true range?
 
-    python -m harness.contact_seen SWEEP.csv [--near MM] [--rows FILE.tsv] [--span N]
+    python -m harness.contact_seen SWEEP.csv [--near MM] [--rows FILE.tsv] [--span N [--at-start [--starts FILE.tsv]]]
 
 Each failed row of an ``ffr sweep --out`` CSV that touched a wall is run again (its own ``replay``
 command, as ``python -m harness.failure_places`` does) to its first wall contact. There, the point
@@ -22,7 +22,10 @@ their orientation (state ORIENT, up to any contact), the readings each ranger ga
 fold-back span the firmware watches (above its span's bottom, ``ir_min_mm``, up to 160 mm,
 ``FFR_FOLD_MAX_MM``; through the firmware's own curve): how many came from a wall truly within
 the fold-back peak's 80 mm (a wall nearly touching, read folded back) and how many from one
-farther off (read as it is). Such a reading alone cannot tell the two apart.
+farther off (read as it is). Such a reading alone cannot tell the two apart. With ``--at-start``
+only each row's first tick counts: the readings the orientation starts from, before any move;
+``--starts FILE.tsv`` then writes them, a line per row (seed, room, success, and per ranger the
+reading through the firmware's curve and the true range, mm), for any filter a question needs.
 """
 
 from __future__ import annotations
@@ -155,6 +158,8 @@ def fields(c: Contact) -> list[str]:
             c.first.ranger, f"{c.first.true_mm:.0f}", str(c.first.read_mv)]
 
 
+STARTS_HEADER = ("seed", "room", "success", "CF_read_mm", "CF_true_mm", "LF_read_mm", "LF_true_mm", "RF_read_mm",
+                 "RF_true_mm", "LR_read_mm", "LR_true_mm", "RR_read_mm", "RR_true_mm")
 HEADER = ("seed", "room", "contact_s", "part", "last_ranger", "true_mm", "read_mV", "first_before_s",
           "first_ranger", "true_mm", "read_mV")
 
@@ -177,9 +182,13 @@ def _corner_ranger(part: str) -> str:
     return {"FL": "LF", "FR": "RF", "RL": "LR", "RR": "RR"}[part]
 
 
-def span_counts(path: Path, n_rows: int) -> dict[str, tuple[int, int]]:
+def span_counts(path: Path, n_rows: int, at_start: bool = False,
+                starts: list[list[str]] | None = None) -> dict[str, tuple[int, int]]:
     """Per ranger: (readings within the fold-back span from a wall truly within FOLD_PEAK_MM,
-    from one farther off) over the orientation of the sweep's first n_rows rows."""
+    from one farther off) over the orientation of the sweep's first n_rows rows (``at_start``: their
+    first tick only, before the robot has moved). ``starts``, if given, gets a line per row: seed,
+    room, success, then each ranger's first reading through the firmware's curve and its true range
+    (mm; ``-`` for no reading), in STARTS_HEADER's order."""
     from ffr_link.library import default_config
     from harness.failure_places import replay_of, sweep_rows
     from harness.loop import F_TH, F_X, F_Y, I_CONTACT, I_SENS, I_STATE, run_mission
@@ -188,7 +197,7 @@ def span_counts(path: Path, n_rows: int) -> dict[str, tuple[int, int]]:
     from sim_plant.sensors.channels import CH_IR
 
     counts = {name: [0, 0] for name in IR_NAMES}
-    for r in sweep_rows(path, ("replay",))[:n_rows]:
+    for r in sweep_rows(path, ("seed", "room", "success", "replay"))[:n_rows]:
         scn, link = replay_of(r["replay"])
         lib = link.split(":", 1)[1] if link.startswith("ctypes:") else ""
         cfg = default_config(lib or None)  # the firmware's own curve (a board's: ours, as the wire's)
@@ -196,26 +205,33 @@ def span_counts(path: Path, n_rows: int) -> dict[str, tuple[int, int]]:
         _, tr = run_mission(scn, link)
         orient = tr.names_of_states().index("ORIENT")
         edges = polygon_edges(np.asarray(scn.arena.wall_polys))
+        line = [r["seed"], r["room"], r["success"]]
         for k in range(len(tr.f)):
-            if int(tr.i[k, I_STATE]) != orient or tr.i[k, I_CONTACT]:
+            if int(tr.i[k, I_STATE]) != orient or tr.i[k, I_CONTACT] or (at_start and k > 0):
                 break
             x, y, th = (float(v) for v in tr.f[k, [F_X, F_Y, F_TH]])
             c, s = math.cos(th), math.sin(th)
             for i, name in enumerate(IR_NAMES):
                 mv = float(tr.i[k, I_SENS + CH_IR[i]])
                 mm = k_mv / (mv - off) - d0 if mv > off else math.inf
-                if not lo + 0.5 < mm <= FOLD_SPAN_MM:
+                if not lo + 0.5 < mm <= FOLD_SPAN_MM and not (starts is not None and k == 0):
                     continue
                 ir = scn.robot.ir[name]
                 a = th + math.radians(ir.angle_deg)
                 t = float(ray_cast(x + c * ir.x - s * ir.y, y + s * ir.x + c * ir.y, math.cos(a), math.sin(a),
                                    edges, 1.5))
-                counts[name][0 if t * 1000.0 < FOLD_PEAK_MM else 1] += 1
+                if k == 0 and starts is not None:
+                    line += [f"{mm:.0f}" if math.isfinite(mm) else "-", f"{t * 1000.0:.0f}"]
+                if lo + 0.5 < mm <= FOLD_SPAN_MM:
+                    counts[name][0 if t * 1000.0 < FOLD_PEAK_MM else 1] += 1
+            if k == 0 and starts is not None:
+                starts.append(line)
     return {k: (v[0], v[1]) for k, v in counts.items()}
 
 
-def span_report(n_rows: int, counts: dict[str, tuple[int, int]]) -> str:
-    lines = [f"readings within the fold-back span ({FOLD_SPAN_MM:.0f} mm) over the orientation of {n_rows} "
+def span_report(n_rows: int, counts: dict[str, tuple[int, int]], at_start: bool = False) -> str:
+    when = "the first tick" if at_start else "the orientation"
+    lines = [f"readings within the fold-back span ({FOLD_SPAN_MM:.0f} mm) over {when} of {n_rows} "
              f"rows: ranger, from a wall truly within {FOLD_PEAK_MM:.0f} mm, from one farther off"]
     for name, (near, far) in counts.items():
         share = f"{100.0 * near / (near + far):.1f} % near" if near + far else "-"
@@ -234,16 +250,28 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--rows", type=Path, help="also the lines as tab-separated text to this file")
     ap.add_argument("--span", type=int, default=0, metavar="N",
                     help="also count the fold-back span's readings over the first N rows' orientation")
+    ap.add_argument("--at-start", action="store_true",
+                    help="with --span: count only each row's first tick, before the robot has moved")
+    ap.add_argument("--starts", type=Path, metavar="FILE.tsv",
+                    help="with --at-start: also each row's first readings and true ranges, tab-separated")
     try:
         args = ap.parse_args(argv)
         if not (math.isfinite(args.near) and args.near > 0.0):
             raise UsageError(f"--near = {args.near}: expected a distance in mm above 0")
         if args.span < 0:
             raise UsageError(f"--span = {args.span}: expected a number of rows, 0 or more")
-        if args.rows is not None and (why := rows_target_problem(args.rows, args.csv)):
-            raise UsageError(f"--rows = {str(args.rows)!r}: {why}")
+        if args.at_start and not args.span:
+            raise UsageError("--at-start: counts the span's readings, so it needs --span N")
+        if args.starts is not None and not args.at_start:
+            raise UsageError(f"--starts = {str(args.starts)!r}: the first tick's readings need --span N --at-start")
+        if args.rows is not None and args.starts is not None and args.rows.resolve() == args.starts.resolve():
+            raise UsageError(f"--starts = {str(args.starts)!r}: the same file as --rows")
+        for opt, target in (("--rows", args.rows), ("--starts", args.starts)):
+            if target is not None and (why := rows_target_problem(target, args.csv)):
+                raise UsageError(f"{opt} = {str(target)!r}: {why}")
         n_failed, contacts = contacts_of(args.csv, args.near / 1000.0)
-        span = span_counts(args.csv, args.span) if args.span else None
+        starts: list[list[str]] | None = [] if args.starts is not None else None
+        span = span_counts(args.csv, args.span, args.at_start, starts) if args.span else None
     except OSError as exc:
         print(f"python -m harness.contact_seen: error: {args.csv}: {exc.strerror}", file=sys.stderr)
         return EXIT_INPUT
@@ -254,9 +282,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.rows is not None and not write_rows("python -m harness.contact_seen", args.rows,
                                                 ["\t".join(f) for f in [list(HEADER), *map(fields, contacts)]]):
         return EXIT_INPUT
+    if starts is not None and args.starts is not None and not write_rows(
+            "python -m harness.contact_seen", args.starts, ["\t".join(f) for f in [list(STARTS_HEADER), *starts]]):
+        return EXIT_INPUT
     print(text)
     if span is not None:
-        print(span_report(args.span, span))
+        print(span_report(args.span, span, args.at_start))
     return 0
 
 

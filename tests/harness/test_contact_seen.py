@@ -53,10 +53,35 @@ def test_the_command_prints_counts_lines_and_the_span(tmp_path: Path, capsys: py
     assert lines[1].split("\t")[0] == "105" and len(lines) == 2
 
 
+def test_at_start_counts_the_first_tick_only(tmp_path: Path) -> None:
+    src = _csv(tmp_path / "s.csv", [(105, False, NEAR)])
+    first = contact_seen.span_counts(src, 1, at_start=True)
+    whole = contact_seen.span_counts(src, 1)
+    assert sum(map(sum, first.values())) <= 5  # one reading per ranger at most
+    assert first["RF"][0] == 1  # seed 105 starts with its right front corner at the wall, read folded back
+    assert sum(map(sum, whole.values())) > sum(map(sum, first.values()))
+
+
+def test_starts_writes_each_rows_first_readings(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    src = _csv(tmp_path / "s.csv", [(105, False, NEAR)])
+    starts = tmp_path / "starts.tsv"
+    assert contact_seen.main([str(src), "--span", "1", "--at-start", "--starts", str(starts)]) == 0
+    assert "over the first tick of 1 rows" in capsys.readouterr().out
+    head, line = (row.split("\t") for row in starts.read_text().splitlines())
+    assert tuple(head) == contact_seen.STARTS_HEADER
+    got = dict(zip(head, line, strict=True))
+    assert (got["seed"], got["room"], got["success"]) == ("105", "1", "False")
+    # the right front corner at the wall: truly nearer than the fold-back peak, read farther than it
+    assert int(got["RF_true_mm"]) < contact_seen.FOLD_PEAK_MM < int(got["RF_read_mm"])
+
+
 def test_bad_input_is_one_line_and_status_2(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     src = _csv(tmp_path / "s.csv", [(105, False, NEAR)])
     for argv, word in (([str(src), "--near", "0"], "--near"), ([str(src), "--span", "-1"], "--span"),
-                       ([str(tmp_path / "none.csv")], "none.csv"), ([str(src), "--rows", str(src)], "--rows")):
+                       ([str(tmp_path / "none.csv")], "none.csv"), ([str(src), "--at-start"], "--at-start"),
+                       ([str(src), "--rows", str(src)], "--rows"), ([str(src), "--starts", "x.tsv"], "--starts"),
+                       ([str(src), "--span", "1", "--at-start", "--starts", str(src)], "--starts"),
+                       ([str(src), "--span", "1", "--at-start", "--rows", "a.tsv", "--starts", "a.tsv"], "--starts")):
         assert contact_seen.main(argv) == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and word in err
