@@ -35,6 +35,7 @@ import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -98,6 +99,14 @@ def touch_point(body: np.ndarray, wall_polys: Sequence[np.ndarray]) -> tuple[np.
     return point, CORNERS[k] if gaps[k] * 1000.0 <= CORNER_MM else "side"
 
 
+def _beam(robot: Any, name: str, x: float, y: float, th: float) -> tuple[float, float, float, float]:
+    """Ranger ``name``'s true centre ray at the body pose (x, y, th): origin and unit direction."""
+    ir = robot.ir[name]
+    c, s = math.cos(th), math.sin(th)
+    a = th + math.radians(ir.angle_deg)
+    return x + c * ir.x - s * ir.y, y + s * ir.x + c * ir.y, math.cos(a), math.sin(a)
+
+
 def contact_of(replay: str, seed: int, room: str, near_m: float) -> Contact | None:
     """Run one replay line to its first wall contact (None: it touched none) and look back."""
     from harness.failure_places import replay_of
@@ -119,13 +128,10 @@ def contact_of(replay: str, seed: int, room: str, near_m: float) -> Contact | No
     seen: list[Sighting] = []
     for k in range(kc):
         x, y, th = (float(v) for v in tr.f[k, [F_X, F_Y, F_TH]])
-        c, s = math.cos(th), math.sin(th)
         for i, name in enumerate(IR_NAMES):
-            ir = scn.robot.ir[name]
-            ox, oy = x + c * ir.x - s * ir.y, y + s * ir.x + c * ir.y
-            a = th + math.radians(ir.angle_deg)
-            t = float(ray_cast(ox, oy, math.cos(a), math.sin(a), edges, 1.5))
-            if math.hypot(ox + t * math.cos(a) - point[0], oy + t * math.sin(a) - point[1]) <= near_m:
+            ox, oy, dx, dy = _beam(scn.robot, name, x, y, th)
+            t = float(ray_cast(ox, oy, dx, dy, edges, 1.5))
+            if math.hypot(ox + t * dx - point[0], oy + t * dy - point[1]) <= near_m:
                 seen.append(Sighting(name, float(tr.f[kc, F_T] - tr.f[k, F_T]), t * 1000.0,
                                      int(tr.i[k, I_SENS + CH_IR[i]])))
     return Contact(seed, room, float(tr.f[kc, F_T]), part, seen[-1] if seen else None,
@@ -205,26 +211,23 @@ def span_counts(path: Path, n_rows: int, at_start: bool = False,
         _, tr = run_mission(scn, link)
         orient = tr.names_of_states().index("ORIENT")
         edges = polygon_edges(np.asarray(scn.arena.wall_polys))
-        line = [r["seed"], r["room"], r["success"]]
-        for k in range(len(tr.f)):
-            if int(tr.i[k, I_STATE]) != orient or tr.i[k, I_CONTACT] or (at_start and k > 0):
+        for k in range(1 if at_start else len(tr.f)):
+            if int(tr.i[k, I_STATE]) != orient or tr.i[k, I_CONTACT]:
                 break
             x, y, th = (float(v) for v in tr.f[k, [F_X, F_Y, F_TH]])
-            c, s = math.cos(th), math.sin(th)
+            line = [r["seed"], r["room"], r["success"]] if starts is not None and k == 0 else None
             for i, name in enumerate(IR_NAMES):
                 mv = float(tr.i[k, I_SENS + CH_IR[i]])
                 mm = k_mv / (mv - off) - d0 if mv > off else math.inf
-                if not lo + 0.5 < mm <= FOLD_SPAN_MM and not (starts is not None and k == 0):
+                in_span = lo + 0.5 < mm <= FOLD_SPAN_MM
+                if not in_span and line is None:
                     continue
-                ir = scn.robot.ir[name]
-                a = th + math.radians(ir.angle_deg)
-                t = float(ray_cast(x + c * ir.x - s * ir.y, y + s * ir.x + c * ir.y, math.cos(a), math.sin(a),
-                                   edges, 1.5))
-                if k == 0 and starts is not None:
-                    line += [f"{mm:.0f}" if math.isfinite(mm) else "-", f"{t * 1000.0:.0f}"]
-                if lo + 0.5 < mm <= FOLD_SPAN_MM:
-                    counts[name][0 if t * 1000.0 < FOLD_PEAK_MM else 1] += 1
-            if k == 0 and starts is not None:
+                t_mm = 1000.0 * float(ray_cast(*_beam(scn.robot, name, x, y, th), edges, 1.5))
+                if line is not None:
+                    line += [f"{mm:.0f}" if math.isfinite(mm) else "-", f"{t_mm:.0f}"]
+                if in_span:
+                    counts[name][0 if t_mm < FOLD_PEAK_MM else 1] += 1
+            if line is not None and starts is not None:
                 starts.append(line)
     return {k: (v[0], v[1]) for k, v in counts.items()}
 
@@ -282,8 +285,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.rows is not None and not write_rows("python -m harness.contact_seen", args.rows,
                                                 ["\t".join(f) for f in [list(HEADER), *map(fields, contacts)]]):
         return EXIT_INPUT
-    if starts is not None and args.starts is not None and not write_rows(
-            "python -m harness.contact_seen", args.starts, ["\t".join(f) for f in [list(STARTS_HEADER), *starts]]):
+    if starts is not None and not write_rows("python -m harness.contact_seen", args.starts,
+                                             ["\t".join(f) for f in [list(STARTS_HEADER), *starts]], "--starts"):
         return EXIT_INPUT
     print(text)
     if span is not None:

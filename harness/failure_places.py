@@ -76,15 +76,16 @@ def rows_target_problem(rows: Path, csv_path: Path) -> str | None:
     return why
 
 
-def write_rows(prog: str, rows: Path, lines: Sequence[str]) -> bool:
-    """A tool's ``--rows`` file: the tab-separated lines, whole or not at all. False after one line
-    on stderr (``prog: error: --rows = ...: why``) when it cannot be written."""
+def write_rows(prog: str, rows: Path, lines: Sequence[str], option: str = "--rows") -> bool:
+    """A tool's tab-separated output file (its ``option``, ``--rows`` by default): the lines, whole
+    or not at all. False after one line on stderr (``prog: error: option = ...: why``) when it cannot
+    be written."""
     from harness.atomic import write_text_atomic
 
     try:
         write_text_atomic(rows, "".join(f"{line}\n" for line in lines))
     except OSError as exc:
-        print(f"{prog}: error: --rows = {str(rows)!r}: {exc.strerror}", file=sys.stderr)
+        print(f"{prog}: error: {option} = {str(rows)!r}: {exc.strerror}", file=sys.stderr)
         return False
     return True
 
