@@ -826,6 +826,14 @@ int ffr_orient_sweep_side(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const
     s = ffr_orient_fold_suspects(cfg, ir_mm, FFR_FOLD_CORNER_MAX_MM);
     l = (s & beams_toward(g, corner, corner, within)) != 0u;
     r = (s & beams_toward(g, corner, -corner, within)) != 0u;
+    if (l != r && (s & beams_toward(g, 1.0f, 0.0f, within)) != 0u) {
+        /* the centre ranger reads so too: the wall is across the front, the
+         * suspect corner nearest it. Turning away from that side swings the
+         * corner forward, into it; turning toward its side swings it back
+         * (the other front corner, farther off, comes forward). Start seeds
+         * 7683, 9417, 10458: docs/robustness.md, "The sweep's direction" */
+        return l ? 1 : -1;
+    }
     return l == r ? 0 : l ? -1 : 1;
 }
 

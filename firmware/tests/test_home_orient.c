@@ -1332,6 +1332,34 @@ TEST(the_sweep_turns_away_from_a_front_corner_read_folded_back)
     CHECK(cases >= 8);
 }
 
+TEST(the_sweep_turns_toward_a_front_corner_read_folded_back_with_the_centre)
+{
+    /* a front corner ranger and the centre one both within the fold-back
+     * span: the wall is across the front, that corner nearest it. Turning
+     * away from its side would swing the corner forward into the wall; the
+     * sweep turns toward its side, whatever home_wall_side would pick */
+    ffr_config_t cfg;
+    ffr_ir_geom_t g;
+    float ir[FFR_IR_COUNT];
+    ffr_config_default(&cfg);
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_RF] = 120.0f;
+    ir[FFR_IR_CF] = 120.0f;
+    CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == -1);
+    ir[FFR_IR_CF] = FFR_FOLD_CORNER_MAX_MM + 1.0f; /* the centre clear as read: away, as before */
+    CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == 1);
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_LF] = 120.0f;
+    ir[FFR_IR_CF] = 110.0f;
+    CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == 1);
+    ir[FFR_IR_RF] = 120.0f; /* both corners: no side to prefer */
+    CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == 0);
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_CF] = 110.0f; /* the centre alone: no corner, no side */
+    CHECK(ffr_orient_sweep_side(&cfg, rig_geom(&g, &cfg, ir), ir) == 0);
+    /* the whole firmware on such starts: tests/scenario/test_start_pose.py */
+}
+
 /* The rig at the origin facing +x with the readings ir in, ORIENT begun and
  * its first step taken: the first move chosen */
 static void first_move(rig_t *r, const ffr_config_t *cfg, const float ir[FFR_IR_COUNT])
@@ -1911,6 +1939,7 @@ SUITE(home_orient,
       TEST_REF(a_wall_line_in_the_sweep_brakes_at_once),
       TEST_REF(the_sweep_turns_away_from_a_wall_beside),
       TEST_REF(the_sweep_turns_away_from_a_front_corner_read_folded_back),
+      TEST_REF(the_sweep_turns_toward_a_front_corner_read_folded_back_with_the_centre),
       TEST_REF(a_wall_beside_below_the_span_is_no_end_of_the_s),
       TEST_REF(a_wall_beside_this_near_gets_the_wider_s_where_the_floor_allows),
       TEST_REF(room_to_turn_again_after_the_shift),
