@@ -375,7 +375,7 @@ typedef struct {
 #define FFR_ORIENT_BINS 36         /* 10 degrees each                         */
 typedef struct {
     uint8_t phase;                 /* sweep, centre, shift turn, shift drive, aim, turn, done, clear, escape */
-    uint8_t anchors;               /* rangers (bit i) whose last hit anchors a stretch of wall */
+    uint8_t anchors;               /* rangers (bit i) whose last hit anchors a stretch of wall; bit 7: a move back watched (rear_passed) */
     uint8_t reverse;               /* the shift (or escape leg) is driven backwards */
     uint8_t escapes;               /* moves made to get room to turn in place */
     uint8_t leg;                   /* the escape's leg: 0 straight, 1-3 the S and the way back, 4 the probe's way back, 5 straight back, 6 the rear fold move */
@@ -402,7 +402,8 @@ typedef struct {
                                          tick on, in the walls' frame and the aim's order
                                          (ffr_orient_to_walls; bin_mm as swept) */
     float bin_y_mm[FFR_ORIENT_BINS];
-    float probe_mm[FFR_IR_COUNT];  /* the probed rangers' readings when the last escape began */
+    float probe_mm[FFR_IR_COUNT];  /* the probed rangers' readings when the last escape began; a ranger looking back
+                                      and not probed: its shortest reading on this move backward (rear_passed) */
 } ffr_home_orient_t;
 
 /* The explorer (explore.c, the arbitrary start mode): one wall followed

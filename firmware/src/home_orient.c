@@ -1607,11 +1607,95 @@ static void aim(ffr_state_t *st)
     o->phase = PH_TURN;
 }
 
+/* A wall behind passed into fold-back (issue 13, 29 Nov). Backing toward a
+ * wall, a ranger looking back reads shorter and shorter until the wall is at
+ * its output's peak (8 cm on the GP2D12), and then LONGER as the wall comes
+ * nearer still: a move back that watches the reading for a wall near (the
+ * rear pair's chord, the end's free floor) sees it recede and drives on into
+ * it (orientation bench start seeds 4412 and 8343: a rear ranger peaked and
+ * fell back 0.4-0.7 s before the rear corner met the wall). A reading that
+ * came down to PASS_MIN_MM or less on this move and has since grown by
+ * PASS_RISE_MM is that peak passed; a wall straight behind does not recede
+ * as the robot backs toward it. Chosen: a part's peak reads 100-120 mm
+ * through the firmware's curve (the datasheet spread's lowest, 2,178 mV:
+ * docs/firmware.md), and 6 mm is above the readings' noise there (4 mm
+ * stopped moves that needed their length). The probe_mm slots of the
+ * rangers looking back that no probe watches hold the shortest reading
+ * since the move back began (no room in the state for more: it is at
+ * FFR_STATE_MAX). Bits of the rangers that passed their peak. */
+#define PASS_MIN_MM 130.0f
+#define PASS_RISE_MM 6.0f
+/* anchors' bit 7 (its bits 0-4 are the sweep's, one per ranger): this move
+ * back is being watched, its shortest readings kept since it began */
+#define BACK_WATCH 0x80u
+typedef char back_watch_bit_free[(FFR_IR_COUNT < 8) ? 1 : -1];
+static uint8_t rear_passed(ffr_state_t *st)
+{
+    ffr_home_orient_t *o = &st->orient;
+    const ffr_config_t *cfg = &st->cfg;
+    uint8_t back, passed = 0u;
+    int i;
+    if (!o->reverse || (o->phase != PH_ESCAPE && o->phase != PH_SHIFT_DRIVE)) {
+        /* nothing else on other ticks: the sweep's and the aim's ticks are
+         * the firmware's heaviest (docs/pil.md) */
+        o->anchors = (uint8_t)(o->anchors & ~BACK_WATCH);
+        return 0u;
+    }
+    back = (uint8_t)(beams_toward(&st->ir_geom, -1.0f, 0.0f, 0.5f) & ~o->probed);
+    if (!(o->anchors & BACK_WATCH)) {
+        o->anchors = (uint8_t)(o->anchors | BACK_WATCH);
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            if ((back >> i) & 1) {
+                o->probe_mm[i] = 65535.0f;
+            }
+        }
+    }
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        float r = st->ir_mm[i];
+        if (!((back >> i) & 1) || !ffr_ir_valid(cfg, r)) {
+            continue;
+        }
+        if (r < o->probe_mm[i]) {
+            o->probe_mm[i] = r;
+        } else if (o->probe_mm[i] <= PASS_MIN_MM && r >= o->probe_mm[i] + PASS_RISE_MM) {
+            passed = (uint8_t)(passed | (1 << i));
+        }
+    }
+    return passed;
+}
+
+static void pass_move(ffr_state_t *st, uint8_t passed)
+{
+    ffr_home_orient_t *o = &st->orient;
+    float len = end_room(st, 0, BAND_MARGIN_MM, 0u) - st->cfg.body_front_mm - ESCAPE_FREE_MM;
+    int i;
+    ffr_stop(st);
+    if (o->phase == PH_SHIFT_DRIVE) {
+        o->after_shift = 1u;
+    }
+    o->escapes++;
+    o->reverse = 0u;
+    o->target_rad = 0.0f;
+    o->leg = LEG_FOLD;
+    o->goal_mm = st->odo.dist_mm + ffr_clampf(len, 0.0f, REAR_FOLD_MOVE_MM);
+    o->probed = passed;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        o->probe_mm[i] = st->ir_mm[i];
+    }
+    ffr_orient_watch_leg(st);
+    o->phase = PH_ESCAPE;
+}
+
 int ffr_orient_step(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
     ffr_home_orient_t *o = &st->orient;
+    uint8_t passed = rear_passed(st);
     ffr_stop(st);
+    if (passed) {
+        pass_move(st, passed);
+        return 0;
+    }
     if (o->phase == PH_ESCAPE) {
         float left = o->goal_mm - st->odo.dist_mm;
         if (left > 0.0f && escape_free(st)) {

@@ -1874,6 +1874,79 @@ TEST(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind)
     CHECK(x < -290.0f);
 }
 
+/* box_readings, both rear rangers parts whose output peaks above the span's
+ * bottom: 28 mm long at 8 cm (their peak, 108 mm as read) and beyond, folded
+ * back nearer (2.5 mm longer per mm nearer): such a part never reads its
+ * span's bottom, and a wall it nears past 8 cm reads farther and farther */
+static void box_tick_peak(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls)
+{
+    float ir[FFR_IR_COUNT];
+    int i;
+    box_readings(cfg, box, walls, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad, ir);
+    for (i = FFR_IR_LR; i <= FFR_IR_RR; ++i) {
+        float t = box_beam_mm(cfg, box, walls, i, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad);
+        if (t <= cfg->ir_max_mm) {
+            ir[i] = t < 80.0f ? 108.0f + (80.0f - t) * 2.5f : t + 28.0f;
+        }
+    }
+    feed(r, cfg, ir);
+    rig_tick(r);
+}
+
+TEST(a_move_back_stops_when_a_rear_ranger_passes_its_peak)
+{
+    /* orientation bench start seeds 4412 and 8343 (`ffr sweep --arena-jitter
+     * 0.025 --start random --noise datasheet --rooms 1 --candles default`):
+     * moving back, a rear ranger's reading came down to its peak and rose
+     * again as the wall behind came nearer, and the rear corner met it 0.4-0.7 s
+     * later. Here a shift of 300 mm backward toward a wall behind at 30
+     * degrees to the rear face (the rear pair's chord not square to the
+     * shift: its stop does not apply), the rear right corner 193 mm from it:
+     * the rear right ranger's beam meets the wall at 80 mm (its peak) after
+     * 171 mm and its reading has grown 6 mm after 174 mm; the shift stops
+     * there, braking from the cruise speed, within 213 mm, moves forward,
+     * and the aim's turn has room: no corner meets a wall (without the rule
+     * the corner meets it after 223 mm). Along a hallway with nothing
+     * behind: the whole shift */
+    static const float box[3][3] = {{-0.866f, -0.5f, 330.0f}, {0.0f, 1.0f, 230.0f}, {0.0f, -1.0f, 230.0f}};
+    ffr_config_t cfg;
+    rig_t r;
+    int k;
+    ffr_config_default(&cfg);
+    for (k = 0; k < 2; ++k) {
+        const float (*b)[3] = k == 0 ? box : &box[1];
+        int walls = k == 0 ? 3 : 2, clear = 1, i, stopped = 0;
+        float x_min = 0.0f;
+        rig_init(&r, &cfg);
+        box_tick_peak(&r, &cfg, b, walls); /* the readings in */
+        ffr_orient_begin(&r.st);
+        r.st.orient.phase = 2u; /* PH_SHIFT_TURN, already facing the way: the drive next */
+        r.st.orient.reverse = 1u;
+        r.st.orient.target_rad = r.st.odo.heading_rad;
+        r.st.orient.goal_mm = 300.0f;
+        r.st.started = 1;
+        for (i = 0; i < 1500 && r.st.state == FFR_ST_ORIENT; ++i) {
+            box_tick_peak(&r, &cfg, b, walls);
+            if (r.st.state != FFR_ST_ORIENT) {
+                break; /* odometry's frame turned to the route's way */
+            }
+            clear &= box_clear(b, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+            x_min = r.st.odo.x_mm < x_min ? r.st.odo.x_mm : x_min;
+            stopped |= r.st.orient.phase == 8u && r.st.orient.leg == 6u; /* PH_ESCAPE, LEG_FOLD */
+        }
+        CHECK(r.st.state != FFR_ST_ORIENT); /* the aim's turn done: the route begins */
+        CHECK(clear);
+        if (k == 0) {
+            CHECK(stopped);
+            CHECK(x_min > -223.0f + 10.0f); /* stopped short of the wall (the shift brakes from 300 mm/s) */
+            CHECK(x_min < -150.0f);         /* and not long before the peak (171 mm) */
+        } else {
+            CHECK(!stopped);
+            CHECK(x_min < -290.0f);
+        }
+    }
+}
+
 TEST(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside)
 {
     /* fresh +-2.5 cm start seed 703: the south wall ahead-left, the east
@@ -1950,4 +2023,5 @@ SUITE(home_orient,
       TEST_REF(a_straight_escape_back_between_walls_beside_goes_its_length),
       TEST_REF(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside),
       TEST_REF(a_wall_beside_with_little_floor_ahead_still_gets_the_s),
-      TEST_REF(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind));
+      TEST_REF(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind),
+      TEST_REF(a_move_back_stops_when_a_rear_ranger_passes_its_peak));
