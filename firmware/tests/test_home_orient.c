@@ -1900,12 +1900,14 @@ TEST(a_move_back_stops_when_a_rear_ranger_passes_its_peak)
      * moving back, a rear ranger's reading came down to its peak and rose
      * again as the wall behind came nearer, and the rear corner met it 0.4-0.7 s
      * later. Here a shift of 300 mm backward toward a wall behind at 30
-     * degrees to the rear face (the rear pair's chord not square to the
-     * shift: its stop does not apply), the rear right corner 193 mm from it:
+     * degrees to the rear face (the rear pair's chord stop,
+     * shift_back_blocked, does not end it), the rear right corner 193 mm
+     * from it:
      * the rear right ranger's beam meets the wall at 80 mm (its peak) after
      * 171 mm and its reading has grown 6 mm after 174 mm; the shift stops
-     * there, braking from the cruise speed, within 213 mm, moves forward,
-     * and the aim's turn has room: no corner meets a wall (without the rule
+     * there, braking from the cruise speed, within 213 mm; the forward
+     * move's 45 mm count from the stop's tick, braking included; and the
+     * aim's turn has room: no corner meets a wall (without the rule
      * the corner meets it after 223 mm). Along a hallway with nothing
      * behind: the whole shift */
     static const float box[3][3] = {{-0.866f, -0.5f, 330.0f}, {0.0f, 1.0f, 230.0f}, {0.0f, -1.0f, 230.0f}};
