@@ -1690,14 +1690,14 @@ int ffr_orient_step(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
     ffr_home_orient_t *o = &st->orient;
-    uint8_t passed = rear_passed(st);
+    uint8_t passed = rear_passed(st); /* every tick: it also ends the watch of a move back */
     ffr_stop(st);
-    if (passed) {
-        pass_move(st, passed);
-        return 0;
-    }
     if (o->phase == PH_ESCAPE) {
         float left = o->goal_mm - st->odo.dist_mm;
+        if (passed) {
+            pass_move(st, passed);
+            return 0;
+        }
         if (left > 0.0f && escape_free(st)) {
             float v = ffr_stopping_speed(left, ESCAPE_SPEED_MM_S);
             st->cmd_v_mm_s = o->reverse ? -v : v;
@@ -1820,7 +1820,12 @@ int ffr_orient_step(ffr_state_t *st)
     }
     if (o->phase == PH_SHIFT_DRIVE) {
         float left = o->goal_mm - st->odo.dist_mm;
-        int blocked = o->reverse ? shift_back_blocked(st) : ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm;
+        int blocked;
+        if (passed) {
+            pass_move(st, passed);
+            return 0;
+        }
+        blocked = o->reverse ? shift_back_blocked(st) : ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm;
         if (left > 0.0f && !blocked) {
             float v = ffr_stopping_speed(left, cfg->cruise_speed_mm_s);
             ffr_drive_heading(st, o->target_rad, o->reverse ? -v : v);
