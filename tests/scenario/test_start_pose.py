@@ -89,6 +89,15 @@ def test_the_home_circles_edge_facing_165_degrees_finds_the_way(ffr_mission, roo
     assert res.wall_contacts == 0
 
 
+def _bench_start_goes_home(ffr_mission, seed: int) -> None:
+    """A start of the orientation bench (`ffr sweep --arena-jitter 0.025 --start random --noise
+    datasheet --rooms 1 --candles default`): home with no wall contact."""
+    scn = make_scenario(room=1, seed=seed, noise="datasheet", start="random", arena_jitter=0.025)
+    res, _ = ffr_mission(scn, record=False)
+    assert res.outcome == "home", res.detail
+    assert res.wall_contacts == 0
+
+
 @pytest.mark.parametrize("seed", [7683, 9417, 10458])
 def test_a_front_corner_at_a_wall_across_the_front_finds_the_way(ffr_mission, seed: int) -> None:
     """Starts of the orientation bench (docs/robustness.md, "The sweep's direction") with a front
@@ -96,10 +105,7 @@ def test_a_front_corner_at_a_wall_across_the_front_finds_the_way(ffr_mission, se
     the centre one both reading within the fold-back span: the sweep turned away from the corner's
     side and swung it into the wall. Kept as named cases: each failed before home_orient.c turned
     toward that side."""
-    scn = make_scenario(room=1, seed=seed, noise="datasheet", start="random", arena_jitter=0.025)
-    res, _ = ffr_mission(scn, record=False)
-    assert res.outcome == "home", res.detail
-    assert res.wall_contacts == 0
+    _bench_start_goes_home(ffr_mission, seed)
 
 
 @pytest.mark.parametrize("seed", [4412, 6380, 8343])
@@ -109,10 +115,7 @@ def test_a_move_back_stops_when_a_rear_ranger_passes_its_peak(ffr_mission, seed:
     peak: its reading came down and rose again as the wall came nearer, and the rear corner met the
     wall. Kept as named cases: each failed before home_orient.c stopped such a move
     (rear_passed)."""
-    scn = make_scenario(room=1, seed=seed, noise="datasheet", start="random", arena_jitter=0.025)
-    res, _ = ffr_mission(scn, record=False)
-    assert res.outcome == "home", res.detail
-    assert res.wall_contacts == 0
+    _bench_start_goes_home(ffr_mission, seed)
 
 
 ANYWHERE = [(room, pose) for room in (1, 2, 3, 4) for pose in start_poses(HEADINGS, seed=room, anywhere=True)]
