@@ -1090,6 +1090,27 @@ static void probe_step(ffr_state_t *st)
     }
 }
 
+/* A straight move forward of len mm, one of the moves before the sweep,
+ * away from the rangers `away` looking back: how their readings change over
+ * it tells fold-back (clear_step, LEG_FOLD). The rear fold move and the
+ * move after a passed peak (pass_move) both make it. */
+static void fold_forward(ffr_state_t *st, uint8_t away, float len)
+{
+    ffr_home_orient_t *o = &st->orient;
+    int i;
+    o->escapes++;
+    o->reverse = 0u;
+    o->leg = LEG_FOLD;
+    o->target_rad = 0.0f;
+    o->goal_mm = st->odo.dist_mm + len;
+    o->probed = away;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        o->probe_mm[i] = st->ir_mm[i];
+    }
+    ffr_orient_watch_leg(st);
+    o->phase = PH_ESCAPE;
+}
+
 /* A rear ranger reading within the fold-back span (above its bottom, up to
  * FFR_FOLD_MAX_MM) may be a wall 3-5.5 cm off it, read as 10-18.5 cm: a
  * rear corner on a wall, which no rule from the hits sees (the hit is
@@ -1105,7 +1126,6 @@ static int rear_fold_move(ffr_state_t *st)
     ffr_home_orient_t *o = &st->orient;
     const ffr_config_t *cfg = &st->cfg;
     uint8_t rear;
-    int i;
     if (FFR_HOME_FOLD_MM > 0.0f || o->escapes > 0u) {
         return 0;
     }
@@ -1115,18 +1135,7 @@ static int rear_fold_move(ffr_state_t *st)
     if (rear == 0u || end_room(st, 0, BAND_MARGIN_MM, 0u) < cfg->body_front_mm + ESCAPE_FREE_MM + REAR_FOLD_MOVE_MM) {
         return 0;
     }
-    o->escapes++;
-    o->reverse = 0u;
-    o->leg = LEG_FOLD;
-    o->target_rad = 0.0f;
-    o->goal_mm = st->odo.dist_mm + REAR_FOLD_MOVE_MM;
-    /* the rear rangers it moves away from: their readings tell fold-back */
-    o->probed = rear;
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        o->probe_mm[i] = st->ir_mm[i];
-    }
-    ffr_orient_watch_leg(st);
-    o->phase = PH_ESCAPE;
+    fold_forward(st, rear, REAR_FOLD_MOVE_MM);
     return 1;
 }
 
@@ -1668,22 +1677,11 @@ static void pass_move(ffr_state_t *st, uint8_t passed)
 {
     ffr_home_orient_t *o = &st->orient;
     float len = end_room(st, 0, BAND_MARGIN_MM, 0u) - st->cfg.body_front_mm - ESCAPE_FREE_MM;
-    int i;
     ffr_stop(st);
     if (o->phase == PH_SHIFT_DRIVE) {
         o->after_shift = 1u;
     }
-    o->escapes++;
-    o->reverse = 0u;
-    o->target_rad = 0.0f;
-    o->leg = LEG_FOLD;
-    o->goal_mm = st->odo.dist_mm + ffr_clampf(len, 0.0f, REAR_FOLD_MOVE_MM);
-    o->probed = passed;
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        o->probe_mm[i] = st->ir_mm[i];
-    }
-    ffr_orient_watch_leg(st);
-    o->phase = PH_ESCAPE;
+    fold_forward(st, passed, ffr_clampf(len, 0.0f, REAR_FOLD_MOVE_MM));
 }
 
 int ffr_orient_step(ffr_state_t *st)
