@@ -140,6 +140,11 @@
  * far: with 40 mm the corner met it, with 100 that mission went home with
  * no contact) */
 #define CORNER_FREE_MM 100.0f
+/* after a shift backward stopped by a rear ranger at its span's bottom
+ * (rear_at_bottom_behind): straight forward this far before the aim (chosen:
+ * with 70 mm, start seeds 7141 and 8260 ended where the aim chose the west
+ * hallway) */
+#define SHIFT_BOTTOM_MOVE_MM 30.0f
 #define SIDE_MARGIN_MM 20.0f      /* a wall beside within the turning radius + this: the sweep turns away from it (chosen) */
 
 /* a shift to stand at wall_target_mm at most this far across the route's
@@ -1489,6 +1494,36 @@ int ffr_orient_square_wall(const ffr_config_t *cfg, const ffr_ir_geom_t *g, cons
     return found;
 }
 
+/* A rear ranger at its span's bottom reads a wall within ~8 cm of it:
+ * behind the rear face by less than a rear corner swings out turning in
+ * place (the default body: 57 mm behind the ranger, 37 mm behind the face,
+ * against 41 mm). A wall across behind, unless the front corner ranger on
+ * the same side reads within the fold-back span too (a wall along that
+ * side, which a move back does not near). The rear pair's chord
+ * (shift_back_blocked) needs both rear readings measured, above the
+ * bottom: a wall behind at a slant, or a part reading short, brings one to
+ * its bottom first (orientation bench start seed 7878: the shift backed
+ * 100 mm past where it should have, the right rear ranger at its bottom,
+ * and the aim's turn met the wall). */
+static int rear_at_bottom_behind(const ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    const ffr_ir_geom_t *g = &st->ir_geom;
+    int i, j;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if (g->beam_cos[i] >= -0.5f || !ffr_ir_valid(cfg, st->ir_mm[i]) || st->ir_mm[i] > cfg->ir_min_mm + 0.5f) {
+            continue;
+        }
+        for (j = 0; j < FFR_IR_COUNT; ++j) {
+            if (g->beam_cos[j] > 0.3f && g->beam_sin[j] * g->beam_sin[i] > 0.0f &&
+                (!ffr_ir_valid(cfg, st->ir_mm[j]) || st->ir_mm[j] > FFR_FOLD_MAX_MM)) {
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 /* Room to turn again after the shift, before the aim's turn in place. The
  * shift drives to where a wall across its axis would be at wall_target_mm
  * as the sweep read it; a ranger reading long (a GP2D12 within its
@@ -1502,16 +1537,35 @@ int ffr_orient_square_wall(const ffr_config_t *cfg, const ffr_ir_geom_t *g, cons
  * escape's), then the aim. Once per sweep. Not step 0's rule (every hit, a
  * reading at the span's bottom taken as half of it): a realistic robot's
  * ranger reading short, or two hits across a corner, would move it after
- * most shifts (robots 4, 30 of the realistic sweep). */
+ * most shifts (robots 4, 30 of the realistic sweep). With no such line
+ * after a shift backward that a rear ranger at its bottom stopped
+ * (rear_at_bottom_behind): SHIFT_BOTTOM_MOVE_MM straight forward. */
 void ffr_orient_after_shift(ffr_state_t *st)
 {
     ffr_home_orient_t *o = &st->orient;
     float need = ffr_orient_turn_radius_mm(&st->cfg) + CLEAR_MARGIN_MM;
     float d, nx, ny, len;
-    if (o->after_shift ||
-        !ffr_orient_square_wall(&st->cfg, &st->ir_geom, st->ir_mm, o->dir0_rad - st->odo.heading_rad, &d, &nx,
-                                &ny) ||
-        d >= need || ffr_absf(nx) < 0.5f) {
+    if (o->after_shift) {
+        return;
+    }
+    if (!ffr_orient_square_wall(&st->cfg, &st->ir_geom, st->ir_mm, o->dir0_rad - st->odo.heading_rad, &d, &nx,
+                                &ny)) {
+        if (o->reverse && rear_at_bottom_behind(st)) {
+            /* a shift backward stopped by a rear ranger at its bottom: no
+             * measured line to move off, so a short straight move forward,
+             * then the aim */
+            float room = end_room(st, 0, BAND_MARGIN_MM, 0u) - st->cfg.body_front_mm - ESCAPE_FREE_MM;
+            o->after_shift = 1u;
+            o->reverse = 0u;
+            o->leg = 0u;
+            o->target_rad = 0.0f; /* curvature: straight */
+            o->goal_mm = st->odo.dist_mm + ffr_clampf(room, 0.0f, SHIFT_BOTTOM_MOVE_MM);
+            ffr_orient_watch_leg(st);
+            o->phase = PH_ESCAPE;
+        }
+        return;
+    }
+    if (d >= need || ffr_absf(nx) < 0.5f) {
         return;
     }
     o->after_shift = 1u;
@@ -1535,7 +1589,9 @@ void ffr_orient_after_shift(ffr_state_t *st)
  * the shift (ffr_orient_after_shift) then measures that wall and moves
  * off it. Not at the radius + CLEAR_MARGIN_MM: that cut short shifts that
  * had room for the aim (the 2001 plan's jittered start seed 54, 23 mm
- * short; its route then missed a door). */
+ * short; its route then missed a door). It also stops where a rear ranger
+ * reaches its span's bottom on a wall across behind (rear_at_bottom_behind):
+ * there the chord is not measured. */
 static int shift_back_blocked(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -1543,6 +1599,9 @@ static int shift_back_blocked(ffr_state_t *st)
     ffr_home_orient_t *o = &st->orient;
     float r, rear, dx, dy;
     int a, b;
+    if (rear_at_bottom_behind(st)) {
+        return 1;
+    }
     if (!rear_pair(st, &a, &b) || ffr_absf(st->odo.heading_rad - o->target_rad) > 5.0f * FFR_DEG) {
         return 0;
     }

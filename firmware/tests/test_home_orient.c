@@ -1874,6 +1874,36 @@ TEST(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind)
     CHECK(x < -290.0f);
 }
 
+TEST(a_shift_backward_stops_where_a_rear_ranger_reaches_its_bottom)
+{
+    /* orientation bench start seed 7878 (`ffr sweep --arena-jitter 0.025
+     * --start random --noise datasheet --rooms 1 --candles default`): the
+     * shift backed 100 mm too far, its right rear ranger reached its span's
+     * bottom and the rear pair's chord was no longer measured; the aim's
+     * turn met the wall. Here a wall behind at 20 degrees to the rear face,
+     * the rear right corner 202 mm from it, nothing else near (the left rear
+     * ranger reads it beyond CLEAR_RANGE_MM: no chord at all), a 300 mm
+     * shift: it stops once the right rear ranger reads its bottom (after
+     * ~149 mm), moves 30 mm forward, and the aim's turn has room: no corner
+     * meets a wall (without the stop the rear corner meets it after
+     * ~215 mm). Along a hallway 20 mm off its right wall, the right rear
+     * and front rangers both at their bottom (a wall beside): the whole
+     * shift (the aim's turn there, within the turning radius of that wall,
+     * is not this rule's to judge) */
+    static const float behind[1][3] = {{-0.94f, -0.342f, 330.0f}};
+    static const float hallway[2][3] = {{0.0f, 1.0f, 340.0f}, {0.0f, -1.0f, 120.0f}};
+    ffr_config_t cfg;
+    rig_t r;
+    float x;
+    int clear;
+    ffr_config_default(&cfg);
+    x = shift_back(&r, &cfg, behind, 1, 0.0f, 300.0f, &clear);
+    CHECK(clear);
+    CHECK(x > -200.0f); /* cut short */
+    x = shift_back(&r, &cfg, hallway, 2, 0.0f, 300.0f, &clear);
+    CHECK(x < -290.0f);
+}
+
 /* box_readings, both rear rangers parts whose output peaks above the span's
  * bottom: 28 mm long at 8 cm (their peak, 108 mm as read) and beyond, folded
  * back nearer (2.5 mm longer per mm nearer): such a part never reads its
@@ -2026,4 +2056,5 @@ SUITE(home_orient,
       TEST_REF(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside),
       TEST_REF(a_wall_beside_with_little_floor_ahead_still_gets_the_s),
       TEST_REF(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind),
-      TEST_REF(a_move_back_stops_when_a_rear_ranger_passes_its_peak));
+      TEST_REF(a_move_back_stops_when_a_rear_ranger_passes_its_peak),
+      TEST_REF(a_shift_backward_stops_where_a_rear_ranger_reaches_its_bottom));
