@@ -1509,9 +1509,10 @@ static int rear_at_bottom_behind(const ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
     const ffr_ir_geom_t *g = &st->ir_geom;
+    uint8_t rear = beams_toward(g, -1.0f, 0.0f, 0.5f);
     int i, j;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
-        if (g->beam_cos[i] >= -0.5f || !ffr_ir_valid(cfg, st->ir_mm[i]) || st->ir_mm[i] > cfg->ir_min_mm + 0.5f) {
+        if (!((rear >> i) & 1) || !ffr_ir_valid(cfg, st->ir_mm[i]) || st->ir_mm[i] > cfg->ir_min_mm + 0.5f) {
             continue;
         }
         for (j = 0; j < FFR_IR_COUNT; ++j) {
@@ -1545,35 +1546,32 @@ void ffr_orient_after_shift(ffr_state_t *st)
     ffr_home_orient_t *o = &st->orient;
     float need = ffr_orient_turn_radius_mm(&st->cfg) + CLEAR_MARGIN_MM;
     float d, nx, ny, len;
+    uint8_t back;
     if (o->after_shift) {
         return;
     }
-    if (!ffr_orient_square_wall(&st->cfg, &st->ir_geom, st->ir_mm, o->dir0_rad - st->odo.heading_rad, &d, &nx,
-                                &ny)) {
-        if (o->reverse && rear_at_bottom_behind(st)) {
-            /* a shift backward stopped by a rear ranger at its bottom: no
-             * measured line to move off, so a short straight move forward,
-             * then the aim */
-            float room = end_room(st, 0, BAND_MARGIN_MM, 0u) - st->cfg.body_front_mm - ESCAPE_FREE_MM;
-            o->after_shift = 1u;
-            o->reverse = 0u;
-            o->leg = 0u;
-            o->target_rad = 0.0f; /* curvature: straight */
-            o->goal_mm = st->odo.dist_mm + ffr_clampf(room, 0.0f, SHIFT_BOTTOM_MOVE_MM);
-            ffr_orient_watch_leg(st);
-            o->phase = PH_ESCAPE;
+    if (ffr_orient_square_wall(&st->cfg, &st->ir_geom, st->ir_mm, o->dir0_rad - st->odo.heading_rad, &d, &nx, &ny)) {
+        if (d >= need || ffr_absf(nx) < 0.5f) {
+            return;
         }
-        return;
-    }
-    if (d >= need || ffr_absf(nx) < 0.5f) {
+        /* straight away from the measured wall by the missing room */
+        back = nx > 0.0f;
+        len = (need - d) / ffr_absf(nx) + 10.0f;
+        len = len < ESCAPE_MAX_MM ? len : ESCAPE_MAX_MM;
+    } else if (o->reverse && rear_at_bottom_behind(st)) {
+        /* a shift backward stopped by a rear ranger at its bottom: no
+         * measured line to move off, so a short straight move forward */
+        back = 0u;
+        len = ffr_clampf(end_room(st, 0, BAND_MARGIN_MM, 0u) - st->cfg.body_front_mm - ESCAPE_FREE_MM, 0.0f,
+                         SHIFT_BOTTOM_MOVE_MM);
+    } else {
         return;
     }
     o->after_shift = 1u;
-    o->reverse = nx > 0.0f;
+    o->reverse = back;
     o->leg = 0u;
     o->target_rad = 0.0f; /* curvature: straight */
-    len = (need - d) / ffr_absf(nx) + 10.0f;
-    o->goal_mm = st->odo.dist_mm + (len < ESCAPE_MAX_MM ? len : ESCAPE_MAX_MM);
+    o->goal_mm = st->odo.dist_mm + len;
     ffr_orient_watch_leg(st);
     o->phase = PH_ESCAPE;
 }
