@@ -1,16 +1,21 @@
 """Where a sweep's failed missions went wrong: each failed row of an ``ffr sweep --out`` CSV run again,
 and the firmware's route step and state at the first wall contact (else at the mission's end).
 
-    python -m harness.failure_places SWEEP.csv [--skip-seeds N,N,...] [--rows FILE.tsv]
+    python -m harness.failure_places SWEEP.csv [--skip-seeds N,N,...] [--rows FILE.tsv] [--motion]
 
 Prints one line per group, most missions first: missions, room, route step (the program counter of
 the route, ``firmware/src/config_default.c``), firmware state, and ``contact`` or the run's detail.
+``--motion`` groups by how the robot was moving in the 0.3 s before that tick too (``turn in
+place``, ``straight forward``, ``straight back``, ``arc forward``, ``arc back``, ``standing``: from
+the wheels' commands) and whether it had moved off its start by then (``moved`` or ``at start``,
+5 mm): a start's sweep turning into a wall at once reads ``turn in place, at start``.
 ``--rows`` also writes every failed row (room, seed, candle, step, state, contact, true pose at that
-tick, time, outcome, detail) as tab-separated text. ``--skip-seeds`` leaves out rows of those noise
-seeds (robots known to fail elsewhere). Each row is run from its own ``replay`` column, the
-``ffr run`` command the sweep wrote for it, read by the CLI's own parser: a row of any sweep (random
-or hallway start, jittered arena, furniture, another arena or robot, ``--set``) runs as it ran. Uses
-the firmware library the harness loads (``FFR_FIRMWARE_LIB``).
+tick, time, outcome, detail, and with ``--motion`` the motion) as tab-separated text.
+``--skip-seeds`` leaves out rows of those noise seeds (robots known to fail elsewhere). Each row is
+run from its own ``replay`` column, the ``ffr run`` command the sweep wrote for it, read by the
+CLI's own parser: a row of any sweep (random or hallway start, jittered arena, furniture, another
+arena or robot, ``--set``) runs as it ran. Uses the firmware library the harness loads
+(``FFR_FIRMWARE_LIB``).
 """
 
 from __future__ import annotations
@@ -46,9 +51,30 @@ class Place:
     t_s: float
     outcome: str
     detail: str
+    motion: str = ""  # how it was moving then (motion_at), and whether it had left its start
 
-    def key(self) -> tuple[str, int, str, str]:
-        return (self.room, self.step, self.state, "contact" if self.contact else self.detail)
+    def key(self, motion: bool = False) -> tuple[str, ...]:
+        k = (self.room, str(self.step), self.state, "contact" if self.contact else self.detail)
+        return k + (self.motion,) if motion else k
+
+
+MOTION_WINDOW_S = 0.3  # the commands averaged before the tick: a few firmware periods
+AT_START_M = 0.005     # nearer its start pose than this: it had not moved off it
+
+
+def motion_at(pwm: np.ndarray, t: np.ndarray, k: int) -> str:
+    """How the robot was driven over the MOTION_WINDOW_S before tick k, from the wheels' mean
+    commands (``pwm`` (n, 2) left, right): a turn in place when their sum is under a quarter of their
+    sizes' sum, straight when their difference is, else an arc; forward or back by the sum's sign."""
+    sel = (t >= t[k] - MOTION_WINDOW_S) & (t <= t[k])
+    left, right = (float(v) for v in pwm[sel].mean(axis=0))
+    size = abs(left) + abs(right)
+    if size == 0.0:
+        return "standing"
+    if abs(left + right) < 0.25 * size:
+        return "turn in place"
+    way = "forward" if left + right > 0 else "back"
+    return f"straight {way}" if abs(left - right) < 0.25 * size else f"arc {way}"
 
 
 def sweep_rows(path: Path, needed: Sequence[str] = NEEDED) -> list[dict[str, str]]:
@@ -125,7 +151,7 @@ def scenario_of(row: dict[str, str]) -> Any:
 
 def place_of(row: dict[str, str]) -> Place:
     """Run one sweep row again and find where it failed."""
-    from harness.loop import I_CONTACT, I_STATE, I_STEP, run_mission
+    from harness.loop import I_CONTACT, I_PWM_L, I_PWM_R, I_STATE, I_STEP, run_mission
 
     candle = (float(row["candle_x"]), float(row["candle_y"]))
     _, tr = run_mission(scenario_of(row))
@@ -133,10 +159,12 @@ def place_of(row: dict[str, str]) -> Place:
     hits = np.nonzero(tr.i[:, I_CONTACT])[0]
     k = int(hits[0]) if len(hits) else len(tr.i) - 1
     code = int(tr.i[k, I_STATE])
+    moved = math.hypot(float(tr.f[k, 1] - tr.f[0, 1]), float(tr.f[k, 2] - tr.f[0, 2])) >= AT_START_M
+    motion = f"{motion_at(tr.i[:, I_PWM_L:I_PWM_R + 1], tr.t, k)}, {'moved' if moved else 'at start'}"
     return Place(room=row["room"], seed=int(row["seed"]), candle=candle, step=int(tr.i[k, I_STEP]),
                  state=names[code] if code < len(names) else str(code), contact=bool(len(hits)),
                  pose=(float(tr.f[k, 1]), float(tr.f[k, 2]), math.degrees(float(tr.f[k, 3]))),
-                 t_s=float(tr.f[k, 0]), outcome=row["outcome"], detail=row["detail"])
+                 t_s=float(tr.f[k, 0]), outcome=row["outcome"], detail=row["detail"], motion=motion)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -146,6 +174,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("csv", type=Path)
     ap.add_argument("--skip-seeds", default="")
     ap.add_argument("--rows", type=Path)
+    ap.add_argument("--motion", action="store_true")
     try:
         args = ap.parse_args(argv)
         if args.rows is not None and (why := rows_target_problem(args.rows, args.csv)):
@@ -171,12 +200,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.rows and not write_rows("python -m harness.failure_places", args.rows, [
             "\t".join([p.room, str(p.seed), f"{p.candle[0]},{p.candle[1]}", str(p.step), p.state,
                        "C" if p.contact else "-", "{:.3f},{:.3f},{:.0f}".format(*p.pose), f"{p.t_s:.1f}",
-                       p.outcome, p.detail]) for p in places]):
+                       p.outcome, p.detail] + ([p.motion] if args.motion else [])) for p in places]):
         return 2
     print(f"{len(places)} failed missions (of {len(rows)} failed rows; seeds left out: "
           f"{','.join(map(str, sorted(skip))) or 'none'})")
-    print("missions\troom\tstep\tstate\tcontact or detail")
-    for key, n in Counter(p.key() for p in places).most_common():
+    print("missions\troom\tstep\tstate\tcontact or detail" + ("\tmotion" if args.motion else ""))
+    for key, n in Counter(p.key(args.motion) for p in places).most_common():
         print(n, *key, sep="\t")
     return 0
 

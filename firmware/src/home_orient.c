@@ -120,12 +120,17 @@
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
 #define BESIDE_REAR_MM 30.0f      /* a rear ranger this far above its span's bottom: the wall beside */
 #define LEG_BACK 5u               /* the escape's leg: straight back, the front shut */
-#define LEG_FOLD 6u               /* the escape's leg: the rear fold move, straight forward */
+#define LEG_FOLD 6u               /* the escape's leg: a fold move, straight (rear: forward; front: back) */
 /* The rear fold move's length: the default body's rear corner swings out
  * sqrt(100^2 + 100^2) - 100 = 41 mm turning in place; this, with a few mm
  * to spare (chosen: 60 put seed 51 of the held-out +-2.5 cm jitter row in
  * the middle hallway's mouth, and the aim took it; docs/robustness.md) */
 #define REAR_FOLD_MOVE_MM 45.0f
+/* The front fold move's length: a wall the centre ranger reads folded back
+ * is 40-80 mm off it, 140-180 mm ahead of the axle; 30 mm more puts it
+ * beyond the front corners' 156 mm turning circle (chosen: 20, 45 and 60 mm
+ * measured, docs/robustness.md "The front fold move") */
+#define FRONT_FOLD_MOVE_MM 30.0f
 /* a rear reading this much shorter after the move was folded back (chosen:
  * above the rangers' noise at 10-16 cm, a few mm) */
 #define FOLD_SHRINK_MM 4.0f
@@ -725,6 +730,11 @@ static uint8_t beams_toward(const ffr_ir_geom_t *g, float ux, float uy, float mi
     return m;
 }
 
+/* the rangers looking ahead, and those looking back: beams within 60 degrees
+ * of straight ahead or straight back */
+static uint8_t front_beams(const ffr_state_t *st) { return beams_toward(&st->ir_geom, 1.0f, 0.0f, 0.5f); }
+static uint8_t rear_beams(const ffr_state_t *st) { return beams_toward(&st->ir_geom, -1.0f, 0.0f, 0.5f); }
+
 /* pairs of rangers that see one wall: a side's two, the front's three, the rear's two */
 static const uint8_t WALL_PAIRS[6][2] = {{FFR_IR_LF, FFR_IR_LR}, {FFR_IR_RF, FFR_IR_RR}, {FFR_IR_CF, FFR_IR_LF},
                                          {FFR_IR_CF, FFR_IR_RF}, {FFR_IR_LF, FFR_IR_RF}, {FFR_IR_LR, FFR_IR_RR}};
@@ -1095,16 +1105,17 @@ static void probe_step(ffr_state_t *st)
     }
 }
 
-/* A straight move forward of len mm, one of the moves before the sweep,
- * away from the rangers `away` looking back: how their readings change over
- * it tells fold-back (clear_step, LEG_FOLD). The rear fold move and the
- * move after a passed peak (pass_move) both make it. */
-static void fold_forward(ffr_state_t *st, uint8_t away, float len)
+/* A straight move of len mm, one of the moves before the sweep, away from
+ * the rangers `away`: forward from rangers looking back, backward from
+ * rangers looking ahead. How their readings change over it tells fold-back
+ * (clear_step, LEG_FOLD). The rear and front fold moves and the move after a
+ * passed peak (pass_move) make it. */
+static void fold_move(ffr_state_t *st, uint8_t away, float len)
 {
     ffr_home_orient_t *o = &st->orient;
     int i;
     o->escapes++;
-    o->reverse = 0u;
+    o->reverse = (away & front_beams(st)) != 0u;
     o->leg = LEG_FOLD;
     o->target_rad = 0.0f;
     o->goal_mm = st->odo.dist_mm + len;
@@ -1123,24 +1134,48 @@ static void fold_forward(ffr_state_t *st, uint8_t away, float len)
  * (the first move of the orientation), once: straight forward
  * REAR_FOLD_MOVE_MM, if the front has room. A straight move keeps the body
  * in its own band (a wall beside along it is not met) and takes every point
- * away from a wall behind or diagonally behind. Only with the fold-back
- * probe off (FFR_HOME_FOLD_MM 0, the default): the probe does this job
- * there. 1 when the move starts. */
-static int rear_fold_move(ffr_state_t *st)
+ * away from a wall behind or diagonally behind. `suspects`: the readings
+ * within the fold-back span on the first look (ffr_orient_step gives 0
+ * after any move, and with the fold-back probe built in, which does this
+ * job there). 1 when the move starts. */
+static int rear_fold_move(ffr_state_t *st, uint8_t suspects)
 {
-    ffr_home_orient_t *o = &st->orient;
     const ffr_config_t *cfg = &st->cfg;
     uint8_t rear;
-    if (FFR_HOME_FOLD_MM > 0.0f || o->escapes > 0u) {
-        return 0;
+    if (suspects == 0u) {
+        return 0; /* the common case: the beams not looked up (the first look's tick, make selftest) */
     }
-    /* the fold-back suspects among the rear rangers (beams within 60 degrees of straight back) */
-    rear = (uint8_t)(ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_FOLD_MAX_MM) &
-                     beams_toward(&st->ir_geom, -1.0f, 0.0f, 0.5f));
+    rear = (uint8_t)(suspects & rear_beams(st));
     if (rear == 0u || end_room(st, 0, BAND_MARGIN_MM, 0u) < cfg->body_front_mm + ESCAPE_FREE_MM + REAR_FOLD_MOVE_MM) {
         return 0;
     }
-    fold_forward(st, rear, REAR_FOLD_MOVE_MM);
+    fold_move(st, rear, REAR_FOLD_MOVE_MM);
+    return 1;
+}
+
+/* The same for the front: the centre ranger or a front corner ranger
+ * reading within the fold-back span may be a wall 4-8 cm off it, read as
+ * 10-16 cm: a wall ahead within the turning circle (the centre's hit, 1-4 cm
+ * off the front face) or a front corner on a wall, which the sweep's turn
+ * meets at once (start seeds 4694, 8071, 9803: docs/robustness.md, "The
+ * front fold move"). First, once, and only with no rear ranger within the
+ * span (that is the rear fold move's, and a wall behind): straight back
+ * FRONT_FOLD_MOVE_MM, if the floor behind as the rear pair see it has room.
+ * The readings over the move tell which rangers were folded back, as for
+ * the rear move. `suspects` as there. 1 when the move starts. */
+static int front_fold_move(ffr_state_t *st, uint8_t suspects)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    uint8_t front;
+    if (suspects == 0u || (suspects & rear_beams(st)) != 0u) {
+        return 0;
+    }
+    front = (uint8_t)(suspects & front_beams(st));
+    if (front == 0u ||
+        end_room(st, 1, BAND_MARGIN_MM, 0u) < cfg->body_front_mm + ESCAPE_FREE_MM + FRONT_FOLD_MOVE_MM) {
+        return 0;
+    }
+    fold_move(st, front, FRONT_FOLD_MOVE_MM);
     return 1;
 }
 
@@ -1154,10 +1189,10 @@ static int clear_step(ffr_state_t *st)
     int i, found;
     grown = ffr_orient_probe_trust(cfg, o->probed, o->probe_mm, st->ir_mm);
     if (o->leg == LEG_FOLD) {
-        /* after the rear fold move: a rear ranger whose reading dropped to
-         * its span's bottom or shrank as the robot moved away was folded
-         * back (a wall as far as read recedes; one along the move, read by
-         * the ranger's slanted beam, reads the same: neither is folded) */
+        /* after a fold move: a ranger whose reading dropped to its span's
+         * bottom or shrank as the robot moved away was folded back (a wall
+         * as far as read recedes; one along the move, read by the ranger's
+         * slanted beam, reads the same: neither is folded) */
         for (i = 0; i < FFR_IR_COUNT; ++i) {
             if ((o->probed >> i) & 1 && ffr_ir_valid(cfg, st->ir_mm[i]) &&
                 (st->ir_mm[i] <= cfg->ir_min_mm + 0.5f || st->ir_mm[i] < o->probe_mm[i] - FOLD_SHRINK_MM)) {
@@ -1219,7 +1254,10 @@ static int clear_step(ffr_state_t *st)
     }
     start_escape(st, need, d, nx, ny);
     if (o->reverse && FFR_HOME_FOLD_MM <= 0.0f) {
-        o->folded = 0u; /* backing toward the wall the fold move left: its rangers read again */
+        /* backing toward the wall the rear fold move left: its rangers read again */
+        o->folded &= (uint8_t)~rear_beams(st);
+    } else if (FFR_HOME_FOLD_MM <= 0.0f) {
+        o->folded &= (uint8_t)~front_beams(st); /* forward, toward the front fold move's wall: likewise */
     }
     /* the rangers this move goes away from: their readings tell fold-back */
     if (o->leg == 0u || o->leg == LEG_BACK) {
@@ -1707,7 +1745,7 @@ static uint8_t rear_passed(ffr_state_t *st)
         o->anchors = (uint8_t)(o->anchors & ~BACK_WATCH);
         return 0u;
     }
-    back = (uint8_t)(beams_toward(&st->ir_geom, -1.0f, 0.0f, 0.5f) & ~o->probed);
+    back = (uint8_t)(rear_beams(st) & ~o->probed);
     if (!(o->anchors & BACK_WATCH)) {
         o->anchors = (uint8_t)(o->anchors | BACK_WATCH);
         for (i = 0; i < FFR_IR_COUNT; ++i) {
@@ -1738,7 +1776,7 @@ static void pass_move(ffr_state_t *st, uint8_t passed)
     if (o->phase == PH_SHIFT_DRIVE) {
         o->after_shift = 1u;
     }
-    fold_forward(st, passed, ffr_clampf(len, 0.0f, REAR_FOLD_MOVE_MM));
+    fold_move(st, passed, ffr_clampf(len, 0.0f, REAR_FOLD_MOVE_MM));
 }
 
 int ffr_orient_step(ffr_state_t *st)
@@ -1787,7 +1825,12 @@ int ffr_orient_step(ffr_state_t *st)
     if (o->phase == PH_CLEAR) {
         uint8_t tries = o->escapes;
         int side;
-        if (rear_fold_move(st) || !clear_step(st)) {
+        /* the fold moves: on the orientation's first look only, and not
+         * with the probe built in (it does their job there) */
+        uint8_t suspects = FFR_HOME_FOLD_MM > 0.0f || o->escapes > 0u
+                               ? 0u
+                               : ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_FOLD_MAX_MM);
+        if (rear_fold_move(st, suspects) || front_fold_move(st, suspects) || !clear_step(st)) {
             return 0;
         }
         /* room to turn: the sweep starts from here */

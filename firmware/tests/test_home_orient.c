@@ -1036,6 +1036,67 @@ TEST(a_rear_corner_read_folded_back_moves_forward_before_the_turn)
     CHECK(cases >= 10); /* the span is reached for many of these poses */
 }
 
+/* A front ranger reading within the fold-back span, every wall as read
+ * clear of the turning circle (start seed 4694's first readings: the right
+ * front corner ranger reads 128 mm, its wall 49 mm off it, the corner 1 mm
+ * off the wall, docs/robustness.md "The front fold move"): before any turn
+ * the robot backs straight FRONT_FOLD_MOVE_MM (30 mm), watching that
+ * ranger. Without the move the sweep began at once and its turn put the
+ * corner on the wall. Not with a rear ranger within the span too (the rear
+ * fold move's, forward), nor with the floor behind shut. */
+enum { FRONT_ALONE, FRONT_AND_REAR, FRONT_BEHIND_SHUT };
+static void front_fold_start(rig_t *r, const ffr_config_t *cfg, int kind)
+{
+    float ir[FFR_IR_COUNT];
+    rig_init(r, cfg);
+    rig_no_walls(cfg, ir);
+    ir[FFR_IR_CF] = 194.0f;
+    ir[FFR_IR_LF] = 326.0f;
+    ir[FFR_IR_RF] = 128.0f;
+    ir[FFR_IR_LR] = 243.0f;
+    ir[FFR_IR_RR] = 523.0f;
+    if (kind == FRONT_AND_REAR) {
+        ir[FFR_IR_RR] = 120.0f;
+    } else if (kind == FRONT_BEHIND_SHUT) {
+        ir[FFR_IR_LR] = ir[FFR_IR_RR] = cfg->ir_min_mm; /* a wall close behind */
+    }
+    feed(r, cfg, ir);
+    rig_tick(r);
+    ffr_orient_begin(&r->st);
+    r->st.started = 1;
+}
+
+TEST(a_front_ranger_read_within_the_span_backs_straight_before_the_turn)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    int kind;
+    ffr_config_default(&cfg);
+    if (FFR_HOME_FOLD_MM > 0.0f) {
+        CHECK(FFR_HOME_FOLD_MM > 0.0f); /* the move is off with the probe on */
+        return;
+    }
+    for (kind = FRONT_ALONE; kind <= FRONT_BEHIND_SHUT; ++kind) {
+        const ffr_home_orient_t *o = &r.st.orient;
+        front_fold_start(&r, &cfg, kind);
+        CHECK(ffr_orient_step(&r.st) == 0);
+        if (kind == FRONT_ALONE) {
+            CHECK(o->phase == 8u); /* PH_ESCAPE */
+            CHECK(o->leg == 6u);   /* LEG_FOLD: straight */
+            CHECK(o->reverse == 1u);
+            CHECK(o->target_rad == 0.0f);
+            CHECK(ffr_absf(o->goal_mm - r.st.odo.dist_mm - 30.0f) < 0.5f);
+            CHECK(o->probed == (1u << FFR_IR_RF)); /* watched: a drop to the bottom is fold-back */
+        } else if (kind == FRONT_AND_REAR) {
+            CHECK(o->phase == 8u && o->leg == 6u);
+            CHECK(o->reverse == 0u); /* the rear fold move: forward */
+            CHECK(o->probed == (1u << FFR_IR_RR));
+        } else {
+            CHECK(!(o->phase == 8u && o->leg == 6u && o->reverse)); /* not back into that wall */
+        }
+    }
+}
+
 /* After the rear fold move, a rear ranger it moved away from whose reading
  * dropped to its span's bottom (or shrank) was folded back: it reads the
  * wall the move left behind, and is no reason for another move (taken as
@@ -2038,6 +2099,7 @@ SUITE(home_orient,
       TEST_REF(a_short_move_tells_folded_back_from_far),
       TEST_REF(backed_up_to_a_wall_read_folded_back),
       TEST_REF(a_rear_corner_read_folded_back_moves_forward_before_the_turn),
+      TEST_REF(a_front_ranger_read_within_the_span_backs_straight_before_the_turn),
       TEST_REF(after_the_rear_fold_move_a_reading_that_did_not_grow_is_the_wall_left_behind),
       TEST_REF(a_far_wall_end_beside_the_way_does_not_close_it),
       TEST_REF(the_front_shut_straight_back_before_the_s),

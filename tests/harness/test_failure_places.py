@@ -33,6 +33,32 @@ def test_a_row_is_run_again_and_placed_at_its_end(tmp_path: Path, capsys: pytest
     assert fields[:6] == ["1", "0", "1.83,1.53", "27", "DONE", "-"]
 
 
+def test_motion_at_names_how_the_wheels_were_driven() -> None:
+    import numpy as np
+
+    from harness.failure_places import motion_at
+
+    t = np.arange(0.0, 1.0, 0.01)
+    cases = {(300, -300): "turn in place", (300, 300): "straight forward", (-300, -280): "straight back",
+             (400, 150): "arc forward", (-100, -400): "arc back", (0, 0): "standing"}
+    for (left, right), name in cases.items():
+        pwm = np.zeros((len(t), 2), dtype=np.int32)
+        pwm[60:] = (left, right)  # the last 0.4 s: the window before the last tick sees only these
+        assert motion_at(pwm, t, len(t) - 1) == name
+        # and the window ends at the tick asked for: before the change, standing
+        assert motion_at(pwm, t, 50) == "standing"
+
+
+def test_motion_groups_and_rows_name_the_motion(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # the nominal room-1 mission ends as it drives straight into the home circle, far from its start
+    out = tmp_path / "rows.tsv"
+    assert main([str(_csv(tmp_path / "s.csv", [ROW])), "--motion", "--rows", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "contact or detail\tmotion" in text
+    assert "1\t1\t27\tDONE\t\tstraight forward, moved" in text
+    assert out.read_text().strip().split("\t")[-1] == "straight forward, moved"
+
+
 def test_skipped_seeds_are_left_out(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert main([str(_csv(tmp_path / "s.csv", [ROW])), "--skip-seeds", "0"]) == 0
     assert "0 failed missions (of 1 failed rows; seeds left out: 0)" in capsys.readouterr().out
