@@ -378,11 +378,11 @@ typedef struct {
     uint8_t anchors;               /* rangers (bit i) whose last hit anchors a stretch of wall; bit 7: a move back watched (rear_passed) */
     uint8_t reverse;               /* the shift (or escape leg) is driven backwards */
     uint8_t escapes;               /* moves made to get room to turn in place */
-    uint8_t leg;                   /* the escape's leg: 0 straight, 1-3 the S and the way back, 4 the probe's way back, 5 straight back, 6 the rear fold move */
+    uint8_t leg;                   /* the escape's leg: 0 straight, 1-3 the S and the way back, 4 the probe's way back, 5 straight back, 6 a fold move */
     uint8_t trusted;               /* rangers (bit i) whose short reading grew as the robot moved away: no fold-back */
     uint8_t probed;                /* rangers the last escape moved away from, whose reading it watches */
     uint8_t probe_done;            /* the probe for fold-back made since the robot last looked afresh */
-    uint8_t folded;                /* rangers (bit i) the probe saw folded back */
+    uint8_t folded;                /* rangers (bit i) the probe or a fold move saw folded back */
     int8_t sweep_side;             /* the sweep turns: +1 left, -1 right, 0 toward home_wall_side */
     uint8_t after_shift;           /* room to turn looked for after the shift: its move ends in the aim */
     uint8_t slant_watch;           /* this straight escape began clear of a wall across it at a slant: it stops short of one */

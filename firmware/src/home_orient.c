@@ -1155,7 +1155,7 @@ static int rear_fold_move(ffr_state_t *st, uint8_t suspects)
 
 /* The same for the front: the centre ranger or a front corner ranger
  * reading within the fold-back span may be a wall 4-8 cm off it, read as
- * 10-16 cm: a wall ahead within the turning circle (the centre's hit, 1-4 cm
+ * 10-16 cm: a wall ahead within the turning circle (the centre's, 2-6 cm
  * off the front face) or a front corner on a wall, which the sweep's turn
  * meets at once (start seeds 4694, 8071, 9803: docs/robustness.md, "The
  * front fold move"). First, once, and only with no rear ranger within the
