@@ -1106,16 +1106,16 @@ static void probe_step(ffr_state_t *st)
 }
 
 /* A straight move of len mm, one of the moves before the sweep, away from
- * the rangers `away`: forward from rangers looking back, backward from
- * rangers looking ahead. How their readings change over it tells fold-back
+ * the rangers `away` (backward: from rangers looking ahead, else from
+ * rangers looking back). How their readings change over it tells fold-back
  * (clear_step, LEG_FOLD). The rear and front fold moves and the move after a
  * passed peak (pass_move) make it. */
-static void fold_move(ffr_state_t *st, uint8_t away, float len)
+static void fold_move(ffr_state_t *st, uint8_t away, float len, uint8_t backward)
 {
     ffr_home_orient_t *o = &st->orient;
     int i;
     o->escapes++;
-    o->reverse = (away & front_beams(st)) != 0u;
+    o->reverse = backward;
     o->leg = LEG_FOLD;
     o->target_rad = 0.0f;
     o->goal_mm = st->odo.dist_mm + len;
@@ -1125,6 +1125,18 @@ static void fold_move(ffr_state_t *st, uint8_t away, float len)
     }
     ffr_orient_watch_leg(st);
     o->phase = PH_ESCAPE;
+}
+
+/* The fold move away from `away` if there are such rangers and the end it
+ * drives toward has room for it (1 when it starts) */
+static int fold_move_if_room(ffr_state_t *st, uint8_t away, float len, uint8_t backward)
+{
+    if (away == 0u ||
+        end_room(st, backward, BAND_MARGIN_MM, 0u) < st->cfg.body_front_mm + ESCAPE_FREE_MM + len) {
+        return 0;
+    }
+    fold_move(st, away, len, backward);
+    return 1;
 }
 
 /* A rear ranger reading within the fold-back span (above its bottom, up to
@@ -1140,17 +1152,8 @@ static void fold_move(ffr_state_t *st, uint8_t away, float len)
  * job there). 1 when the move starts. */
 static int rear_fold_move(ffr_state_t *st, uint8_t suspects)
 {
-    const ffr_config_t *cfg = &st->cfg;
-    uint8_t rear;
-    if (suspects == 0u) {
-        return 0; /* the common case: the beams not looked up (the first look's tick, make selftest) */
-    }
-    rear = (uint8_t)(suspects & rear_beams(st));
-    if (rear == 0u || end_room(st, 0, BAND_MARGIN_MM, 0u) < cfg->body_front_mm + ESCAPE_FREE_MM + REAR_FOLD_MOVE_MM) {
-        return 0;
-    }
-    fold_move(st, rear, REAR_FOLD_MOVE_MM);
-    return 1;
+    /* suspects 0, the common case: the beams not looked up (the first look's tick, make selftest) */
+    return suspects != 0u && fold_move_if_room(st, (uint8_t)(suspects & rear_beams(st)), REAR_FOLD_MOVE_MM, 0u);
 }
 
 /* The same for the front: the centre ranger or a front corner ranger
@@ -1165,18 +1168,8 @@ static int rear_fold_move(ffr_state_t *st, uint8_t suspects)
  * the rear move. `suspects` as there. 1 when the move starts. */
 static int front_fold_move(ffr_state_t *st, uint8_t suspects)
 {
-    const ffr_config_t *cfg = &st->cfg;
-    uint8_t front;
-    if (suspects == 0u || (suspects & rear_beams(st)) != 0u) {
-        return 0;
-    }
-    front = (uint8_t)(suspects & front_beams(st));
-    if (front == 0u ||
-        end_room(st, 1, BAND_MARGIN_MM, 0u) < cfg->body_front_mm + ESCAPE_FREE_MM + FRONT_FOLD_MOVE_MM) {
-        return 0;
-    }
-    fold_move(st, front, FRONT_FOLD_MOVE_MM);
-    return 1;
+    return suspects != 0u && (suspects & rear_beams(st)) == 0u &&
+           fold_move_if_room(st, (uint8_t)(suspects & front_beams(st)), FRONT_FOLD_MOVE_MM, 1u);
 }
 
 static int clear_step(ffr_state_t *st)
@@ -1253,11 +1246,10 @@ static int clear_step(ffr_state_t *st)
         return 0;
     }
     start_escape(st, need, d, nx, ny);
-    if (o->reverse && FFR_HOME_FOLD_MM <= 0.0f) {
-        /* backing toward the wall the rear fold move left: its rangers read again */
-        o->folded &= (uint8_t)~rear_beams(st);
-    } else if (FFR_HOME_FOLD_MM <= 0.0f) {
-        o->folded &= (uint8_t)~front_beams(st); /* forward, toward the front fold move's wall: likewise */
+    if (FFR_HOME_FOLD_MM <= 0.0f) {
+        /* toward the wall a fold move left (backing: the rear move's; forward:
+         * the front move's): its rangers read again */
+        o->folded &= (uint8_t)~(o->reverse ? rear_beams(st) : front_beams(st));
     }
     /* the rangers this move goes away from: their readings tell fold-back */
     if (o->leg == 0u || o->leg == LEG_BACK) {
@@ -1776,7 +1768,7 @@ static void pass_move(ffr_state_t *st, uint8_t passed)
     if (o->phase == PH_SHIFT_DRIVE) {
         o->after_shift = 1u;
     }
-    fold_move(st, passed, ffr_clampf(len, 0.0f, REAR_FOLD_MOVE_MM));
+    fold_move(st, passed, ffr_clampf(len, 0.0f, REAR_FOLD_MOVE_MM), 0u);
 }
 
 int ffr_orient_step(ffr_state_t *st)

@@ -1044,6 +1044,15 @@ TEST(a_rear_corner_read_folded_back_moves_forward_before_the_turn)
  * ranger. Without the move the sweep began at once and its turn put the
  * corner on the wall. Not with a rear ranger within the span too (the rear
  * fold move's, forward), nor with the floor behind shut. */
+/* the orientation started with readings ir, at its first look (PH_CLEAR) */
+static void look_from(rig_t *r, const ffr_config_t *cfg, const float ir[FFR_IR_COUNT])
+{
+    feed(r, cfg, ir);
+    rig_tick(r);
+    ffr_orient_begin(&r->st);
+    r->st.started = 1;
+}
+
 enum { FRONT_ALONE, FRONT_AND_REAR, FRONT_BEHIND_SHUT };
 static void front_fold_start(rig_t *r, const ffr_config_t *cfg, int kind)
 {
@@ -1060,10 +1069,7 @@ static void front_fold_start(rig_t *r, const ffr_config_t *cfg, int kind)
     } else if (kind == FRONT_BEHIND_SHUT) {
         ir[FFR_IR_LR] = ir[FFR_IR_RR] = cfg->ir_min_mm; /* a wall close behind */
     }
-    feed(r, cfg, ir);
-    rig_tick(r);
-    ffr_orient_begin(&r->st);
-    r->st.started = 1;
+    look_from(r, cfg, ir);
 }
 
 TEST(a_front_ranger_read_within_the_span_backs_straight_before_the_turn)
@@ -1118,10 +1124,7 @@ static void after_fold_move(rig_t *r, const ffr_config_t *cfg, int kind)
     } else {
         ir[FFR_IR_LF] = ir[FFR_IR_LR] = 110.0f; /* a wall along the left side, 148 mm off the axis */
     }
-    feed(r, cfg, ir);
-    rig_tick(r);
-    ffr_orient_begin(&r->st);
-    r->st.started = 1;
+    look_from(r, cfg, ir);
     if (kind != FOLD_NONE) {
         /* as the move's end leaves it: 45 mm forward made */
         r->st.orient.escapes = 1u;
