@@ -17,6 +17,7 @@ import numpy as np
 from sim_plant.errors import CandlePlacementError, FfrInputError
 from sim_plant.file_schemas import ArenaFile
 from sim_plant.geometry import (
+    first_open_point,
     point_in_convex,
     point_segment_distance,
     polygon_edges,
@@ -306,12 +307,9 @@ def _room_gap(arena: Arena, rm: Room, reach: float, step: float = 0.01,
         length = math.hypot(ex, ey)
         ox, oy = ey / length, -ex / length  # outward normal of a CCW polygon
         m = max(2, int(length / step))
-        for j in range(1, m):
-            f = j / m
-            x, y = p[0] + ex * f + ox * off, p[1] + ey * f + oy * off
-            if any(point_in_convex(x, y, wp) for wp in arena.wall_polys):
-                continue
-            if point_segment_distance(x, y, ax, ay, bx, by) <= reach:
-                continue
-            return x, y
+        f = np.arange(1, m) / m  # as j / m, j = 1 .. m - 1: the same points, in the same order
+        xs, ys = p[0] + ex * f + ox * off, p[1] + ey * f + oy * off
+        k = first_open_point(xs, ys, arena.wall_polys, ax, ay, bx, by, reach)
+        if k >= 0:
+            return float(xs[k]), float(ys[k])
     return None

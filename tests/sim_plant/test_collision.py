@@ -179,3 +179,18 @@ def test_start_pose_in_a_wall_is_an_input_error():
         Plant(ARENA, ROBOT, 3.5, 3.5, 0.0)
     with pytest.raises(FfrInputError, match="start"):
         Plant(ARENA, ROBOT, math.nan, 1.0, 0.0)
+
+
+def test_first_open_point_skips_points_in_a_polygon_or_near_the_segment() -> None:
+    from sim_plant.geometry import first_open_point
+
+    square = np.array([[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]])  # counter-clockwise
+    # in the square; on its edge (counts as in); within reach 0.1 of the segment (2,0)-(2,1); open; open
+    xs = np.array([0.5, 1.0, 2.05, 3.0, 4.0])
+    ys = np.array([0.5, 0.5, 0.5, 0.5, 0.5])
+    assert first_open_point(xs, ys, square, 2.0, 0.0, 2.0, 1.0, 0.1) == 3
+    assert first_open_point(xs[:3], ys[:3], square, 2.0, 0.0, 2.0, 1.0, 0.1) == -1
+    # a reach that no longer covers the third point: it is the first open one
+    assert first_open_point(xs, ys, square, 2.0, 0.0, 2.0, 1.0, 0.04) == 2
+    # no polygons: only the segment's reach keeps a point
+    assert first_open_point(xs, ys, square[:0], 2.0, 0.0, 2.0, 1.0, 0.1) == 0
