@@ -370,6 +370,23 @@ def bench_sweep(n: int) -> tuple[float, float]:
     return two, ratio
 
 
+# -- the arena's checks --------------------------------------------------------------
+
+def bench_arena(repeat: int) -> tuple[float, float]:
+    """The arena's checks (sim_plant/arena.py, validate_arena): paid for every jittered arena a sweep
+    draws, and for every row that ``python -m harness.start_room`` or ``failure_places`` rebuilds."""
+    from sim_plant.arena import DEFAULT_ARENA, load_arena, validate_arena
+    from sim_plant.arena_jitter import jitter_arena
+
+    arena = load_arena(DEFAULT_ARENA)
+    seeds = iter(range(1_000_000))
+    check = _best(lambda: validate_arena(arena), repeat)
+    draw = _best(lambda: jitter_arena(arena, 0.025, np.random.default_rng(next(seeds))), repeat)
+    print(f"arena: the 2004 arena's checks {check * 1e3:.1f} ms; a +-2.5 cm jittered arena drawn and checked "
+          f"{draw * 1e3:.1f} ms (best of {repeat})")
+    return check, draw
+
+
 # -- start-up ----------------------------------------------------------------------
 
 def _proc_s(argv: list[str], repeat: int, extra_env: dict[str, str] | None = None) -> tuple[float, float]:
@@ -439,12 +456,12 @@ def bench_startup(repeat: int) -> float:
     return w
 
 
-PARTS = ("parts", "missions")
+PARTS = ("parts", "missions", "arena")
 
 
 def main(argv: list[str] | None = None) -> int:
     """``python -m harness.bench``: everything and the goals (``make bench``);
-    ``python -m harness.bench parts missions``: only those sections, no goal summary (to set
+    ``python -m harness.bench parts missions arena``: only those sections, no goal summary (to set
     two trees side by side: run it in each, alternately)."""
     args = sys.argv[1:] if argv is None else argv
     quick = os.environ.get("FFR_BENCH_QUICK", "") not in ("", "0")
@@ -459,9 +476,12 @@ def main(argv: list[str] | None = None) -> int:
             bench_parts(repeat)
         if "missions" in args:
             bench_missions(repeat)
+        if "arena" in args:
+            bench_arena(repeat)
         return 0
     n = int(os.environ.get("FFR_BENCH_MISSIONS", "40" if quick else "1000"))
     bench_parts(repeat)
+    bench_arena(repeat)
     rtf, mreal = bench_missions(repeat)
     rate, sreal = bench_sweep(n)
     start = bench_startup(repeat)

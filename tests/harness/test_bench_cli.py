@@ -22,3 +22,10 @@ def test_perf_map_bad_arguments_are_one_line_and_exit_2(capsys: pytest.CaptureFi
     assert perf_map.main(argv) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and names in err
+
+
+def test_the_arena_section_runs_alone(capsys: pytest.CaptureFixture[str]) -> None:
+    # its figures are timings (make bench); here only that the section is there and prints them
+    assert bench.main(["arena"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("arena: the 2004 arena's checks ") and "jittered arena drawn and checked" in out
