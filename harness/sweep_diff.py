@@ -125,9 +125,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("--rows", type=Path, help="also one tab-separated line per changed mission to this file")
     try:
         args = ap.parse_args(argv)
-        for csv_path in (args.before, args.after):
-            if args.rows is not None and (why := rows_target_problem(args.rows, csv_path)):
-                raise UsageError(f"--rows = {str(args.rows)!r}: {why}")
+        if args.rows is not None:
+            for csv_path in (args.before, args.after):
+                if why := rows_target_problem(args.rows, csv_path):
+                    raise UsageError(f"--rows = {str(args.rows)!r}: {why}")
         d = diff(args.before, args.after)
     except OSError as exc:
         print(f"{prog}: error: {exc.filename}: {exc.strerror}", file=sys.stderr)

@@ -142,8 +142,8 @@ def first_open_point(xs: np.ndarray, ys: np.ndarray, polys: np.ndarray, ax: floa
                      by: float, reach: float) -> int:
     """The index of the first point (xs[k], ys[k]) inside none of the convex polygons ``polys`` and
     farther than ``reach`` from the segment a-b, or -1: an arena's check that a room is closed
-    (sim_plant/arena.py, ``_room_gap``) asks this of a few hundred points per room, for every
-    jittered arena a sweep draws; point by point from Python it cost ~30 ms an arena."""
+    (sim_plant/arena.py, ``_room_gap``) asks this of a few hundred points per room side, for every
+    jittered arena a sweep draws (its cost: ``python -m harness.bench arena``)."""
     for k in range(xs.shape[0]):
         inside = False
         for w in range(polys.shape[0]):
