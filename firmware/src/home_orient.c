@@ -37,7 +37,11 @@
  * moves away first: straight, for a wall ahead or behind; an S and back
  * along it, for a wall beside. During the sweep, a wall's line seen within
  * the radius (it may reach on into a blind sector between the rangers)
- * stops the sweep for the same move, and the sweep starts again.
+ * stops the sweep for the same move, and the sweep starts again. A
+ * reading within a ranger's fold-back span may be a wall nearly touching:
+ * short straight "fold moves" away from such readings come first, and a
+ * fold move forward turns back if a front ranger's reading grows as it
+ * nears its wall (folded back: lead_grew).
  *
  * Built with FFR_HOME_FOLD_MM > 0 (default 0: off), a reading up to that
  * many mm may be a ranger folded back (a wall 3-5.5 cm off reads 10-18.5
@@ -121,6 +125,7 @@
 #define BESIDE_REAR_MM 30.0f      /* a rear ranger this far above its span's bottom: the wall beside */
 #define LEG_BACK 5u               /* the escape's leg: straight back, the front shut */
 #define LEG_FOLD 6u               /* the escape's leg: a fold move, straight (rear: forward; front: back) */
+#define LEG_TURNED 7u             /* the escape's leg: a fold move forward turned back (fold_turnabout) */
 /* The rear fold move's length: the default body's rear corner swings out
  * sqrt(100^2 + 100^2) - 100 = 41 mm turning in place; this, with a few mm
  * to spare (chosen: 60 put seed 51 of the held-out +-2.5 cm jitter row in
@@ -151,6 +156,10 @@
  * hallway) */
 #define SHIFT_BOTTOM_MOVE_MM 30.0f
 #define SIDE_MARGIN_MM 20.0f      /* a wall beside within the turning radius + this: the sweep turns away from it (chosen) */
+/* a line across a corner with too little floor ahead for the S: first this
+ * far straight forward, if the floor ahead has room (chosen: 30, 45 and 70
+ * measured, docs/robustness.md "A fold move watches its leading end") */
+#define CHORD_STEP_MM 45.0f
 
 /* a shift to stand at wall_target_mm at most this far across the route's
  * first direction (and at most SHIFT_TOL_MM along it) is not made; 0 (the
@@ -961,7 +970,25 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
              * front left corner on the south wall at 1.22 s). The escapes
              * are given up and the sweep turns in place, as once they are
              * spent: the rangers read the two walls past the body's ends,
-             * not beside it (seed 703: 216 and 233 mm off the axle) */
+             * not beside it (seed 703: 216 and 233 mm off the axle).
+             * First, on the orientation's first move, a short step straight
+             * forward if the floor ahead has room for it: the rear ranger at
+             * its bottom may be a wall along the side at a slant, nearest at
+             * the rear corner, that the sweep's turn would swing that corner
+             * into (start seeds 4632, 8130, 9434: 41-49 mm off it along the
+             * rear beam); a straight move takes the rear corner away from a
+             * wall behind or diagonally behind, and keeps the body in its
+             * own band. Then the look again decides */
+            if (o->escapes == 1u &&
+                end_room(st, 0, BAND_MARGIN_MM, 0u) > st->cfg.body_front_mm + ESCAPE_FREE_MM + CHORD_STEP_MM) {
+                o->reverse = 0u;
+                o->leg = 0u;
+                o->target_rad = 0.0f;
+                o->goal_mm = st->odo.dist_mm + CHORD_STEP_MM;
+                ffr_orient_watch_leg(st);
+                o->phase = PH_ESCAPE;
+                return;
+            }
             o->escapes = ESCAPE_TRIES;
             o->phase = PH_CLEAR;
             return;
@@ -1117,6 +1144,7 @@ static void fold_move(ffr_state_t *st, uint8_t away, float len, uint8_t backward
     o->escapes++;
     o->reverse = backward;
     o->leg = LEG_FOLD;
+    o->leg_mm = len; /* fold_turnabout: how far it came */
     o->target_rad = 0.0f;
     o->goal_mm = st->odo.dist_mm + len;
     o->probed = away;
@@ -1181,7 +1209,7 @@ static int clear_step(ffr_state_t *st)
     uint8_t suspects, grown;
     int i, found;
     grown = ffr_orient_probe_trust(cfg, o->probed, o->probe_mm, st->ir_mm);
-    if (o->leg == LEG_FOLD) {
+    if (o->leg == LEG_FOLD || o->leg == LEG_TURNED) {
         /* after a fold move: a ranger whose reading dropped to its span's
          * bottom or shrank as the robot moved away was folded back (a wall
          * as far as read recedes; one along the move, read by the ranger's
@@ -1771,6 +1799,52 @@ static void pass_move(ffr_state_t *st, uint8_t passed)
     fold_move(st, passed, ffr_clampf(len, 0.0f, REAR_FOLD_MOVE_MM), 0u);
 }
 
+/* A fold move forward watches its leading end. A front ranger that read
+ * within the fold-back span when it began may be folded back itself: a wall
+ * converging ahead, a few mm off the front corner, read as 10-13 cm (the
+ * rear one on that side, reading alike, then reads its wall as it is).
+ * Driven nearer, a folded reading grows (below the GP2D12's 8 cm peak its
+ * output falls toward contact), a wall read as it is comes nearer or stays.
+ * Grown by PROBE_TELL_MM: the rangers (bit i) so grown, 0 if none (and
+ * on the last of the ESCAPE_TRIES moves). */
+static uint8_t lead_grew(const ffr_state_t *st)
+{
+    const ffr_home_orient_t *o = &st->orient;
+    uint8_t lead, m = 0u;
+    int i;
+    if (o->leg != LEG_FOLD || o->reverse || o->escapes >= ESCAPE_TRIES) {
+        return 0u; /* the last: no turning back and forth (a move back may pass a rear peak: pass_move) */
+    }
+    lead = (uint8_t)(front_beams(st) & ~o->probed);
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if ((lead >> i) & 1 && o->probe_mm[i] > st->cfg.ir_min_mm + 0.5f && o->probe_mm[i] <= FFR_FOLD_MAX_MM &&
+            ffr_ir_valid(&st->cfg, st->ir_mm[i]) && st->ir_mm[i] >= o->probe_mm[i] + PROBE_TELL_MM) {
+            m = (uint8_t)(m | (1 << i));
+        }
+    }
+    return m;
+}
+
+/* Its wall is the near one: the move turns back, to where it began and on
+ * as far as the front fold move goes (FRONT_FOLD_MOVE_MM), away from that
+ * wall; after it, those rangers' readings tell fold-back as after the front
+ * fold move (clear_step). */
+static void fold_turnabout(ffr_state_t *st, uint8_t grew)
+{
+    ffr_home_orient_t *o = &st->orient;
+    float came = o->leg_mm - (o->goal_mm - st->odo.dist_mm);
+    int i;
+    ffr_stop(st);
+    o->reverse = 1u;
+    o->leg = LEG_TURNED;
+    o->goal_mm = st->odo.dist_mm + came + FRONT_FOLD_MOVE_MM;
+    o->probed = grew;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        o->probe_mm[i] = st->ir_mm[i];
+    }
+    ffr_orient_watch_leg(st);
+}
+
 int ffr_orient_step(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -1779,8 +1853,14 @@ int ffr_orient_step(ffr_state_t *st)
     ffr_stop(st);
     if (o->phase == PH_ESCAPE) {
         float left = o->goal_mm - st->odo.dist_mm;
+        uint8_t grew;
         if (passed) {
             pass_move(st, passed);
+            return 0;
+        }
+        grew = lead_grew(st);
+        if (grew != 0u) {
+            fold_turnabout(st, grew);
             return 0;
         }
         if (left > 0.0f && escape_free(st)) {

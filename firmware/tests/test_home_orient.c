@@ -2085,6 +2085,114 @@ TEST(a_wall_beside_with_little_floor_ahead_still_gets_the_s)
     CHECK(s_forward);
 }
 
+/* A fold move forward (the rear fold move, or the move after a rear peak
+ * passed) watches its leading end. A front ranger that read within the
+ * fold-back span when the move began and now reads PROBE_TELL_MM (8 mm)
+ * longer is folded back, its wall nearer than the front corner's turning
+ * room: the move turns back (LEG_TURNED), to where it began and on the
+ * front fold move's 30 mm, and watches that ranger as the front fold move
+ * does. A wall converging ahead, 5 cm off the front corner ranger, reads
+ * 10-13 cm, the rear ranger on that side as it is, alike (start seeds 4427,
+ * 5964, 7248, 7840: docs/robustness.md "A fold move watches its leading end").
+ * Not for a reading grown less, for one that began outside the span (a wall
+ * as it is, receding), nor on a move backward (rear_passed watches that). */
+enum { GROWN, GROWN_LESS, BEGAN_FAR, BACKWARD };
+static void fold_move_watched(rig_t *r, const ffr_config_t *cfg, int kind)
+{
+    float ir[FFR_IR_COUNT];
+    rig_init(r, cfg);
+    rig_no_walls(cfg, ir);
+    ir[FFR_IR_LF] = 112.0f;
+    ir[FFR_IR_LR] = 118.0f;
+    look_from(r, cfg, ir);
+    /* as the rear fold move leaves it, 14 mm on */
+    r->st.orient.phase = 8u;  /* PH_ESCAPE */
+    r->st.orient.leg = 6u;    /* LEG_FOLD */
+    r->st.orient.escapes = 1u;
+    r->st.orient.reverse = kind == BACKWARD ? 1u : 0u;
+    r->st.orient.target_rad = 0.0f;
+    r->st.orient.leg_mm = 45.0f;
+    r->st.orient.goal_mm = r->st.odo.dist_mm + 45.0f - 14.0f;
+    r->st.orient.probed = (uint8_t)(1u << (kind == BACKWARD ? FFR_IR_LF : FFR_IR_LR));
+    r->st.orient.probe_mm[FFR_IR_LF] = kind == BEGAN_FAR ? 170.0f : 112.0f;
+    r->st.orient.probe_mm[FFR_IR_LR] = 118.0f;
+    ir[FFR_IR_LF] = kind == GROWN_LESS ? 119.0f : (kind == BEGAN_FAR ? 180.0f : 121.0f);
+    ir[FFR_IR_LR] = kind == BACKWARD ? 127.0f : 118.0f;
+    feed(r, cfg, ir);
+    rig_tick(r);
+}
+
+TEST(a_fold_move_forward_turns_back_when_its_front_ranger_reads_longer)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    int kind;
+    ffr_config_default(&cfg);
+    for (kind = GROWN; kind <= BACKWARD; ++kind) {
+        const ffr_home_orient_t *o = &r.st.orient;
+        float dist;
+        fold_move_watched(&r, &cfg, kind);
+        dist = r.st.odo.dist_mm;
+        CHECK(o->phase == 8u);
+        if (kind == GROWN) {
+            CHECK(o->leg == 7u); /* LEG_TURNED */
+            CHECK(o->reverse == 1u);
+            CHECK(o->target_rad == 0.0f);
+            CHECK(ffr_absf(o->goal_mm - dist - (14.0f + 30.0f)) < 0.5f);
+            CHECK(o->probed == (1u << FFR_IR_LF)); /* watched as the front fold move watches */
+        } else {
+            CHECK(o->leg == 6u); /* on as it was */
+            CHECK(o->reverse == (kind == BACKWARD ? 1u : 0u));
+            CHECK(ffr_absf(o->goal_mm - dist - 31.0f) < 0.5f);
+        }
+    }
+}
+
+/* A line across a corner with too little floor ahead for the S
+ * (corner_chord: the right front ranger measures its wall, 173 mm, the right
+ * rear one reads its span's bottom; the centre one a wall 204 mm ahead:
+ * start seed 4632's first readings). Before,
+ * the escapes were given up at once and the sweep turned in place: if the
+ * line is one wall along the side at a slant, nearest at the rear corner,
+ * the turn swings that corner into it (start seeds 4632, 8130, 9434, 41-49
+ * mm off it along the rear beam). First, on the orientation's first move, a
+ * straight step forward (CHORD_STEP_MM, 45 mm), the floor ahead allowing;
+ * on a later look, or with the floor ahead shut, given up as before. */
+enum { CHORD_FIRST, CHORD_LATER, CHORD_SHUT };
+TEST(a_line_across_a_corner_first_steps_forward_when_the_floor_allows)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    int kind;
+    ffr_config_default(&cfg);
+    for (kind = CHORD_FIRST; kind <= CHORD_SHUT; ++kind) {
+        const ffr_home_orient_t *o = &r.st.orient;
+        float ir[FFR_IR_COUNT];
+        rig_init(&r, &cfg);
+        rig_no_walls(&cfg, ir);
+        /* start seed 4632's first readings */
+        ir[FFR_IR_CF] = kind == CHORD_SHUT ? 120.0f : 204.0f;
+        ir[FFR_IR_LF] = 662.0f;
+        ir[FFR_IR_RF] = 173.0f;
+        ir[FFR_IR_LR] = 531.0f;
+        ir[FFR_IR_RR] = cfg.ir_min_mm;
+        look_from(&r, &cfg, ir);
+        if (kind == CHORD_LATER) {
+            r.st.orient.escapes = 1u; /* one move made already */
+        }
+        CHECK(ffr_orient_step(&r.st) == 0);
+        if (kind == CHORD_FIRST) {
+            CHECK(o->phase == 8u); /* PH_ESCAPE */
+            CHECK(o->leg == 0u && o->reverse == 0u && o->target_rad == 0.0f);
+            CHECK(ffr_absf(o->goal_mm - r.st.odo.dist_mm - 45.0f) < 0.5f);
+            CHECK(o->escapes == 1u);
+        } else {
+            CHECK(o->escapes == 4u); /* ESCAPE_TRIES: given up, the sweep next */
+            CHECK(o->phase == 7u);   /* PH_CLEAR */
+        }
+    }
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -2120,6 +2228,8 @@ SUITE(home_orient,
       TEST_REF(a_straight_escape_back_between_walls_beside_goes_its_length),
       TEST_REF(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside),
       TEST_REF(a_wall_beside_with_little_floor_ahead_still_gets_the_s),
+      TEST_REF(a_fold_move_forward_turns_back_when_its_front_ranger_reads_longer),
+      TEST_REF(a_line_across_a_corner_first_steps_forward_when_the_floor_allows),
       TEST_REF(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind),
       TEST_REF(a_move_back_stops_when_a_rear_ranger_passes_its_peak),
       TEST_REF(a_shift_backward_stops_where_a_rear_ranger_reaches_its_bottom));
