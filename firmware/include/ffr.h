@@ -387,7 +387,7 @@ typedef struct {
     uint8_t after_shift;           /* room to turn looked for after the shift: its move ends in the aim */
     uint8_t slant_watch;           /* this straight escape began clear of a wall across it at a slant: it stops short of one */
     float back_chord_mm;           /* the rear pair's chord behind when this straight leg began (rear_chord_room) */
-    float leg_mm;                  /* the escape's arc legs' length           */
+    float leg_mm;                  /* the escape's arc legs' length; a fold move's length */
     float near_mm;                 /* nearest wall line seen in the sweep, from where it stands */
     float near_x_mm, near_y_mm;    /* its nearest point (odometry, from the robot) */
     float x0_mm, y0_mm, h0_rad;    /* odometry pose where the sweep began     */
@@ -402,7 +402,8 @@ typedef struct {
                                          tick on, in the walls' frame and the aim's order
                                          (ffr_orient_to_walls; bin_mm as swept) */
     float bin_y_mm[FFR_ORIENT_BINS];
-    float probe_mm[FFR_IR_COUNT];  /* the probed rangers' readings when the last escape began; a ranger looking back
+    float probe_mm[FFR_IR_COUNT];  /* the probed rangers' readings when the last escape began (a fold move: every
+                                      ranger's, lead_grew watches the front ones); a ranger looking back
                                       and not probed: its shortest reading on this move backward (rear_passed) */
 } ffr_home_orient_t;
 

@@ -144,6 +144,10 @@
 #define PROBE_MM 15.0f            /* the probe for fold-back: this far, straight (chosen) */
 #define PROBE_SPEED_MM_S 40.0f    /* and this slowly (chosen: a reading or two per mm)   */
 #define PROBE_TELL_MM 8.0f        /* a reading changed this much on the probe tells its way */
+/* a front ranger's reading grown this much on a fold move forward: folded
+ * back (lead_grew; chosen: 4, 6, 8 and 12 mm measured, docs/robustness.md
+ * "A fold move watches its leading end") */
+#define LEAD_GROW_MM 8.0f
 /* a straight escape forward stops this far (along the move) from a wall
  * across it at a slant, in front of a front corner (chosen: a realistic
  * robot's corner ranger, near its span's bottom, read the wall some 30 mm
@@ -157,8 +161,9 @@
 #define SHIFT_BOTTOM_MOVE_MM 30.0f
 #define SIDE_MARGIN_MM 20.0f      /* a wall beside within the turning radius + this: the sweep turns away from it (chosen) */
 /* a line across a corner with too little floor ahead for the S: first this
- * far straight forward, if the floor ahead has room (chosen: 30, 45 and 70
- * measured, docs/robustness.md "A fold move watches its leading end") */
+ * far straight forward, if the floor ahead has room. As REAR_FOLD_MOVE_MM:
+ * past the rear corner's 41 mm swing (30, 45 and 70 mm measured: 30 and 45
+ * alike, docs/robustness.md "A fold move watches its leading end") */
 #define CHORD_STEP_MM 45.0f
 
 /* a shift to stand at wall_target_mm at most this far across the route's
@@ -1805,20 +1810,24 @@ static void pass_move(ffr_state_t *st, uint8_t passed)
  * rear one on that side, reading alike, then reads its wall as it is).
  * Driven nearer, a folded reading grows (below the GP2D12's 8 cm peak its
  * output falls toward contact), a wall read as it is comes nearer or stays.
- * Grown by PROBE_TELL_MM: the rangers (bit i) so grown, 0 if none (and
- * on the last of the ESCAPE_TRIES moves). */
+ * Grown by LEAD_GROW_MM: the rangers (bit i) so grown, 0 if none. Every
+ * fold move forward is watched: the rear fold move's and the one after a
+ * rear peak passed on a move back (pass_move). */
 static uint8_t lead_grew(const ffr_state_t *st)
 {
     const ffr_home_orient_t *o = &st->orient;
     uint8_t lead, m = 0u;
     int i;
     if (o->leg != LEG_FOLD || o->reverse || o->escapes >= ESCAPE_TRIES) {
-        return 0u; /* the last: no turning back and forth (a move back may pass a rear peak: pass_move) */
+        /* not a fold move forward, or the last of the moves: a move back may
+         * pass a rear peak (pass_move, forward again), and the two would
+         * take turns */
+        return 0u;
     }
     lead = (uint8_t)(front_beams(st) & ~o->probed);
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         if ((lead >> i) & 1 && o->probe_mm[i] > st->cfg.ir_min_mm + 0.5f && o->probe_mm[i] <= FFR_FOLD_MAX_MM &&
-            ffr_ir_valid(&st->cfg, st->ir_mm[i]) && st->ir_mm[i] >= o->probe_mm[i] + PROBE_TELL_MM) {
+            ffr_ir_valid(&st->cfg, st->ir_mm[i]) && st->ir_mm[i] >= o->probe_mm[i] + LEAD_GROW_MM) {
             m = (uint8_t)(m | (1 << i));
         }
     }
@@ -1828,7 +1837,10 @@ static uint8_t lead_grew(const ffr_state_t *st)
 /* Its wall is the near one: the move turns back, to where it began and on
  * as far as the front fold move goes (FRONT_FOLD_MOVE_MM), away from that
  * wall; after it, those rangers' readings tell fold-back as after the front
- * fold move (clear_step). */
+ * fold move (clear_step). Odometry's distance counts both ways, so the few
+ * mm the body rolls on forward as it brakes shorten the way back by as
+ * much (a hard stop here, as the sweep's, measured no better:
+ * docs/robustness.md). */
 static void fold_turnabout(ffr_state_t *st, uint8_t grew)
 {
     ffr_home_orient_t *o = &st->orient;

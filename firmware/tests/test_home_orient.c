@@ -2087,7 +2087,7 @@ TEST(a_wall_beside_with_little_floor_ahead_still_gets_the_s)
 
 /* A fold move forward (the rear fold move, or the move after a rear peak
  * passed) watches its leading end. A front ranger that read within the
- * fold-back span when the move began and now reads PROBE_TELL_MM (8 mm)
+ * fold-back span when the move began and now reads LEAD_GROW_MM (8 mm)
  * longer is folded back, its wall nearer than the front corner's turning
  * room: the move turns back (LEG_TURNED), to where it began and on the
  * front fold move's 30 mm, and watches that ranger as the front fold move
@@ -2095,8 +2095,9 @@ TEST(a_wall_beside_with_little_floor_ahead_still_gets_the_s)
  * 10-13 cm, the rear ranger on that side as it is, alike (start seeds 4427,
  * 5964, 7248, 7840: docs/robustness.md "A fold move watches its leading end").
  * Not for a reading grown less, for one that began outside the span (a wall
- * as it is, receding), nor on a move backward (rear_passed watches that). */
-enum { GROWN, GROWN_LESS, BEGAN_FAR, BACKWARD };
+ * as it is, receding), on a move backward (rear_passed watches that), nor on
+ * the last of the four moves before the sweep. */
+enum { GROWN, GROWN_LESS, BEGAN_FAR, BACKWARD, LAST_MOVE };
 static void fold_move_watched(rig_t *r, const ffr_config_t *cfg, int kind)
 {
     float ir[FFR_IR_COUNT];
@@ -2108,12 +2109,12 @@ static void fold_move_watched(rig_t *r, const ffr_config_t *cfg, int kind)
     /* as the rear fold move leaves it, 14 mm on */
     r->st.orient.phase = 8u;  /* PH_ESCAPE */
     r->st.orient.leg = 6u;    /* LEG_FOLD */
-    r->st.orient.escapes = 1u;
+    r->st.orient.escapes = kind == LAST_MOVE ? 4u : 1u; /* ESCAPE_TRIES */
     r->st.orient.reverse = kind == BACKWARD ? 1u : 0u;
     r->st.orient.target_rad = 0.0f;
     r->st.orient.leg_mm = 45.0f;
     r->st.orient.goal_mm = r->st.odo.dist_mm + 45.0f - 14.0f;
-    r->st.orient.probed = (uint8_t)(1u << (kind == BACKWARD ? FFR_IR_LF : FFR_IR_LR));
+    r->st.orient.probed = (uint8_t)(1u << FFR_IR_LR); /* LF not probed: watched, but for the move's way */
     r->st.orient.probe_mm[FFR_IR_LF] = kind == BEGAN_FAR ? 170.0f : 112.0f;
     r->st.orient.probe_mm[FFR_IR_LR] = 118.0f;
     ir[FFR_IR_LF] = kind == GROWN_LESS ? 119.0f : (kind == BEGAN_FAR ? 180.0f : 121.0f);
@@ -2128,7 +2129,7 @@ TEST(a_fold_move_forward_turns_back_when_its_front_ranger_reads_longer)
     rig_t r;
     int kind;
     ffr_config_default(&cfg);
-    for (kind = GROWN; kind <= BACKWARD; ++kind) {
+    for (kind = GROWN; kind <= LAST_MOVE; ++kind) {
         const ffr_home_orient_t *o = &r.st.orient;
         float dist;
         fold_move_watched(&r, &cfg, kind);
@@ -2146,6 +2147,51 @@ TEST(a_fold_move_forward_turns_back_when_its_front_ranger_reads_longer)
             CHECK(ffr_absf(o->goal_mm - dist - 31.0f) < 0.5f);
         }
     }
+}
+
+/* The same from the first look, tick by tick: those two readings begin the
+ * rear fold move (forward, 45 mm); the front ranger reading 9 mm longer
+ * after some of it, the move turns back as far as it came and 30 mm on.
+ * That ranger's reading dropping to its span's bottom on the way back, the
+ * look after it counts it folded back (clear_step, as after the front fold
+ * move), not a wall at the front corner: the sweep begins, no other move
+ * (taken as read, the bottom puts a wall within the turning circle). */
+TEST(a_fold_move_turned_back_goes_as_far_as_it_came_and_tells_fold_back)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    const ffr_home_orient_t *o = &r.st.orient;
+    float ir[FFR_IR_COUNT], dist0, came;
+    int i;
+    ffr_config_default(&cfg);
+    rig_init(&r, &cfg);
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_LF] = 112.0f;
+    ir[FFR_IR_LR] = 118.0f;
+    look_from(&r, &cfg, ir);
+    dist0 = r.st.odo.dist_mm;
+    for (i = 0; i < 20; ++i) { /* the first look, then on into the move */
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+    }
+    CHECK(o->phase == 8u && o->leg == 6u && o->reverse == 0u); /* PH_ESCAPE, LEG_FOLD, forward */
+    CHECK(ffr_absf(o->leg_mm - 45.0f) < 0.5f);
+    came = r.st.odo.dist_mm - dist0;
+    CHECK(came > 1.0f && came < 40.0f); /* on its way */
+    ir[FFR_IR_LF] = 121.0f;
+    feed(&r, &cfg, ir);
+    rig_tick(&r);
+    came = r.st.odo.dist_mm - dist0;
+    CHECK(o->leg == 7u && o->reverse == 1u); /* LEG_TURNED */
+    CHECK(ffr_absf(o->goal_mm - r.st.odo.dist_mm - (came + 30.0f)) < 0.5f);
+    ir[FFR_IR_LF] = cfg.ir_min_mm; /* dropped as the body backs away: folded back */
+    for (i = 0; i < 400 && o->leg == 7u; ++i) {
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+    }
+    CHECK(o->leg != 7u);   /* the way back ended and the look came */
+    CHECK(o->phase == 0u); /* PH_SWEEP */
+    CHECK(o->escapes == 1u);
 }
 
 /* A line across a corner with too little floor ahead for the S
@@ -2229,6 +2275,7 @@ SUITE(home_orient,
       TEST_REF(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside),
       TEST_REF(a_wall_beside_with_little_floor_ahead_still_gets_the_s),
       TEST_REF(a_fold_move_forward_turns_back_when_its_front_ranger_reads_longer),
+      TEST_REF(a_fold_move_turned_back_goes_as_far_as_it_came_and_tells_fold_back),
       TEST_REF(a_line_across_a_corner_first_steps_forward_when_the_floor_allows),
       TEST_REF(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind),
       TEST_REF(a_move_back_stops_when_a_rear_ranger_passes_its_peak),
