@@ -125,7 +125,7 @@
 #define BESIDE_REAR_MM 30.0f      /* a rear ranger this far above its span's bottom: the wall beside */
 #define LEG_BACK 5u               /* the escape's leg: straight back, the front shut */
 #define LEG_FOLD 6u               /* the escape's leg: a fold move, straight (rear: forward; front: back) */
-#define LEG_TURNED 7u             /* the escape's leg: a fold move forward turned back (fold_turnabout) */
+#define LEG_TURNED 7u             /* the escape's leg: a fold move forward turned back (lead_grew) */
 /* The rear fold move's length: the default body's rear corner swings out
  * sqrt(100^2 + 100^2) - 100 = 41 mm turning in place; this, with a few mm
  * to spare (chosen: 60 put seed 51 of the held-out +-2.5 cm jitter row in
@@ -1137,19 +1137,18 @@ static void probe_step(ffr_state_t *st)
     }
 }
 
-/* A straight move of len mm, one of the moves before the sweep, away from
- * the rangers `away` (backward: from rangers looking ahead, else from
- * rangers looking back). How their readings change over it tells fold-back
- * (clear_step, LEG_FOLD). The rear and front fold moves and the move after a
- * passed peak (pass_move) make it. */
-static void fold_move(ffr_state_t *st, uint8_t away, float len, uint8_t backward)
+/* A straight move of len mm away from the rangers `away` (backward: from
+ * rangers looking ahead, else from rangers looking back). How their
+ * readings change over it tells fold-back (clear_step, LEG_FOLD and
+ * LEG_TURNED). leg: LEG_FOLD (fold_move) or LEG_TURNED (a fold move forward
+ * turned back, lead_grew). */
+static void fold_leg(ffr_state_t *st, uint8_t away, float len, uint8_t backward, uint8_t leg)
 {
     ffr_home_orient_t *o = &st->orient;
     int i;
-    o->escapes++;
     o->reverse = backward;
-    o->leg = LEG_FOLD;
-    o->leg_mm = len; /* fold_turnabout: how far it came */
+    o->leg = leg;
+    o->leg_mm = len; /* a turn back (LEG_TURNED): how far it came */
     o->target_rad = 0.0f;
     o->goal_mm = st->odo.dist_mm + len;
     o->probed = away;
@@ -1158,6 +1157,14 @@ static void fold_move(ffr_state_t *st, uint8_t away, float len, uint8_t backward
     }
     ffr_orient_watch_leg(st);
     o->phase = PH_ESCAPE;
+}
+
+/* A fold move: one of the moves before the sweep. The rear and front fold
+ * moves and the move after a passed peak (pass_move) make it. */
+static void fold_move(ffr_state_t *st, uint8_t away, float len, uint8_t backward)
+{
+    st->orient.escapes++;
+    fold_leg(st, away, len, backward, LEG_FOLD);
 }
 
 /* The fold move away from `away` if there are such rangers and the end it
@@ -1824,37 +1831,14 @@ static uint8_t lead_grew(const ffr_state_t *st)
          * take turns */
         return 0u;
     }
-    lead = (uint8_t)(front_beams(st) & ~o->probed);
+    /* the front rangers it does not move away from, within the span as it began */
+    lead = (uint8_t)(front_beams(st) & ~o->probed & ffr_orient_fold_suspects(&st->cfg, o->probe_mm, FFR_FOLD_MAX_MM));
     for (i = 0; i < FFR_IR_COUNT; ++i) {
-        if ((lead >> i) & 1 && o->probe_mm[i] > st->cfg.ir_min_mm + 0.5f && o->probe_mm[i] <= FFR_FOLD_MAX_MM &&
-            ffr_ir_valid(&st->cfg, st->ir_mm[i]) && st->ir_mm[i] >= o->probe_mm[i] + LEAD_GROW_MM) {
+        if ((lead >> i) & 1 && ffr_ir_valid(&st->cfg, st->ir_mm[i]) && st->ir_mm[i] >= o->probe_mm[i] + LEAD_GROW_MM) {
             m = (uint8_t)(m | (1 << i));
         }
     }
     return m;
-}
-
-/* Its wall is the near one: the move turns back, to where it began and on
- * as far as the front fold move goes (FRONT_FOLD_MOVE_MM), away from that
- * wall; after it, those rangers' readings tell fold-back as after the front
- * fold move (clear_step). Odometry's distance counts both ways, so the few
- * mm the body rolls on forward as it brakes shorten the way back by as
- * much (a hard stop here, as the sweep's, measured no better:
- * docs/robustness.md). */
-static void fold_turnabout(ffr_state_t *st, uint8_t grew)
-{
-    ffr_home_orient_t *o = &st->orient;
-    float came = o->leg_mm - (o->goal_mm - st->odo.dist_mm);
-    int i;
-    ffr_stop(st);
-    o->reverse = 1u;
-    o->leg = LEG_TURNED;
-    o->goal_mm = st->odo.dist_mm + came + FRONT_FOLD_MOVE_MM;
-    o->probed = grew;
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        o->probe_mm[i] = st->ir_mm[i];
-    }
-    ffr_orient_watch_leg(st);
 }
 
 int ffr_orient_step(ffr_state_t *st)
@@ -1872,7 +1856,14 @@ int ffr_orient_step(ffr_state_t *st)
         }
         grew = lead_grew(st);
         if (grew != 0u) {
-            fold_turnabout(st, grew);
+            /* its wall is the near one: the move turns back, as far as it
+             * came and on as far as the front fold move goes, away from that
+             * wall; after it those rangers' readings tell fold-back as after
+             * the front fold move (clear_step). Odometry's distance counts
+             * both ways, so the few mm the body rolls on forward as it
+             * brakes shorten the way back by as much (a hard stop here, as
+             * the sweep's, measured no better: docs/robustness.md) */
+            fold_leg(st, grew, o->leg_mm - left + FRONT_FOLD_MOVE_MM, 1u, LEG_TURNED);
             return 0;
         }
         if (left > 0.0f && escape_free(st)) {
