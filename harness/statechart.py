@@ -48,6 +48,9 @@ DOC = REPO / "docs" / "firmware.md"
 BEGIN = "<!-- statechart:begin -->"
 END = "<!-- statechart:end -->"
 NAMES_OPS = 16  # FFR_NAMES_OWN (ffr_contract.h): our route ops' names (ffr.h)
+# calls followed into the file's helpers at most this deep: a guard against recursion, not a
+# limit on the firmware's helpers (home_orient.c's deepest chain of pure helpers is 9 calls)
+MAX_CALL_DEPTH = 12
 
 # ---- reading C -------------------------------------------------------------------------------------
 
@@ -491,7 +494,7 @@ def room_chart(src: Path, names: Names) -> Chart:
     def outcomes(fn: Func, env: dict[str, list[str]], conds: tuple[Cond, ...], depth: int = 0
                  ) -> list[tuple[tuple[Cond, ...], str, str]]:
         """(conditions, kind, value): kind 'phase' (value RP_X), 'fail' (label), 'result' (FFR_ROOM_X)."""
-        if depth > 8:
+        if depth > MAX_CALL_DEPTH:
             raise ChartError(f"room.c: {fn.name}: helpers call each other too deep")
         returned = {st.toks[1] for st in fn.body if len(st.toks) == 2 and st.toks[0] == "return"}
         out: list[tuple[tuple[Cond, ...], str, str]] = []
@@ -578,7 +581,7 @@ def mission_chart(src: Path, names: Names, room: Chart) -> Chart:
     def effects(fn: Func, env: dict[str, list[str]], conds: tuple[Cond, ...], pc: str = "", depth: int = 0
                 ) -> list[tuple[tuple[Cond, ...], str, str]]:
         """(conditions, target node, action) of everything fn does that changes the state."""
-        if depth > 8:
+        if depth > MAX_CALL_DEPTH:
             raise ChartError(f"{fn.name}: calls nest too deep")
         out: list[tuple[tuple[Cond, ...], str, str]] = []
         for st in fn.body:
@@ -660,7 +663,7 @@ def orient_chart(src: Path) -> Chart:
 
     def sets(fn: Func, env: dict[str, list[str]], conds: tuple[Cond, ...], depth: int = 0
              ) -> list[tuple[tuple[Cond, ...], str]]:
-        if depth > 8:
+        if depth > MAX_CALL_DEPTH:
             raise ChartError(f"home_orient.c: {fn.name}: calls nest too deep")
         out: list[tuple[tuple[Cond, ...], str]] = []
         for st in fn.body:

@@ -920,6 +920,19 @@ static int corner_chord(const ffr_state_t *st, float side)
     return front && rear;
 }
 
+/* An escape leg straight ahead (backward: astern) for len mm, watched as
+ * every leg is (ffr_orient_watch_leg) */
+static void straight_leg(ffr_state_t *st, float len, uint8_t backward, uint8_t leg)
+{
+    ffr_home_orient_t *o = &st->orient;
+    o->reverse = backward;
+    o->leg = leg;
+    o->target_rad = 0.0f; /* curvature (1/mm): straight */
+    o->goal_mm = st->odo.dist_mm + len;
+    ffr_orient_watch_leg(st);
+    o->phase = PH_ESCAPE;
+}
+
 /* One move away from a wall d mm off in direction (nx, ny) (body frame). */
 static void start_escape(ffr_state_t *st, float need, float d, float nx, float ny)
 {
@@ -986,12 +999,7 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
              * own band. Then the look again decides */
             if (o->escapes == 1u &&
                 end_room(st, 0, BAND_MARGIN_MM, 0u) > st->cfg.body_front_mm + ESCAPE_FREE_MM + CHORD_STEP_MM) {
-                o->reverse = 0u;
-                o->leg = 0u;
-                o->target_rad = 0.0f;
-                o->goal_mm = st->odo.dist_mm + CHORD_STEP_MM;
-                ffr_orient_watch_leg(st);
-                o->phase = PH_ESCAPE;
+                straight_leg(st, CHORD_STEP_MM, 0u, 0u);
                 return;
             }
             o->escapes = ESCAPE_TRIES;
@@ -1146,17 +1154,12 @@ static void fold_leg(ffr_state_t *st, uint8_t away, float len, uint8_t backward,
 {
     ffr_home_orient_t *o = &st->orient;
     int i;
-    o->reverse = backward;
-    o->leg = leg;
     o->leg_mm = len; /* a turn back (LEG_TURNED): how far it came */
-    o->target_rad = 0.0f;
-    o->goal_mm = st->odo.dist_mm + len;
     o->probed = away;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         o->probe_mm[i] = st->ir_mm[i];
     }
-    ffr_orient_watch_leg(st);
-    o->phase = PH_ESCAPE;
+    straight_leg(st, len, backward, leg);
 }
 
 /* A fold move: one of the moves before the sweep. The rear and front fold
@@ -1638,12 +1641,7 @@ void ffr_orient_after_shift(ffr_state_t *st)
         return;
     }
     o->after_shift = 1u;
-    o->reverse = back;
-    o->leg = 0u;
-    o->target_rad = 0.0f; /* curvature: straight */
-    o->goal_mm = st->odo.dist_mm + len;
-    ffr_orient_watch_leg(st);
-    o->phase = PH_ESCAPE;
+    straight_leg(st, len, back, 0u);
 }
 
 /* A shift driven backward is the sweep's reading of the wall behind from

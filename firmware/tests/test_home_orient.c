@@ -2097,15 +2097,22 @@ TEST(a_wall_beside_with_little_floor_ahead_still_gets_the_s)
  * Not for a reading grown less, for one that began outside the span (a wall
  * as it is, receding), on a move backward (rear_passed watches that), nor on
  * the last of the four moves before the sweep. */
-enum { GROWN, GROWN_LESS, BEGAN_FAR, BACKWARD, LAST_MOVE };
-static void fold_move_watched(rig_t *r, const ffr_config_t *cfg, int kind)
+/* the first look with the left front and rear rangers both within the
+ * span (112 and 118 mm): the rear fold move's readings; ir: as fed */
+static void rear_fold_start(rig_t *r, const ffr_config_t *cfg, float ir[FFR_IR_COUNT])
 {
-    float ir[FFR_IR_COUNT];
     rig_init(r, cfg);
     rig_no_walls(cfg, ir);
     ir[FFR_IR_LF] = 112.0f;
     ir[FFR_IR_LR] = 118.0f;
     look_from(r, cfg, ir);
+}
+
+enum { GROWN, GROWN_LESS, BEGAN_FAR, BACKWARD, LAST_MOVE };
+static void fold_move_watched(rig_t *r, const ffr_config_t *cfg, int kind)
+{
+    float ir[FFR_IR_COUNT];
+    rear_fold_start(r, cfg, ir);
     /* as the rear fold move leaves it, 14 mm on */
     r->st.orient.phase = 8u;  /* PH_ESCAPE */
     r->st.orient.leg = 6u;    /* LEG_FOLD */
@@ -2164,11 +2171,7 @@ TEST(a_fold_move_turned_back_goes_as_far_as_it_came_and_tells_fold_back)
     float ir[FFR_IR_COUNT], dist0, came;
     int i;
     ffr_config_default(&cfg);
-    rig_init(&r, &cfg);
-    rig_no_walls(&cfg, ir);
-    ir[FFR_IR_LF] = 112.0f;
-    ir[FFR_IR_LR] = 118.0f;
-    look_from(&r, &cfg, ir);
+    rear_fold_start(&r, &cfg, ir);
     dist0 = r.st.odo.dist_mm;
     for (i = 0; i < 20; ++i) { /* the first look, then on into the move */
         feed(&r, &cfg, ir);
