@@ -304,7 +304,7 @@ static uint8_t on_enter_in(ffr_state_t *st, room_tick_t *t)
     /* deep enough that a candle along the door's wall can be approached
      * with room to spare; the candle circle or a wall ahead stops it sooner */
     r->entry_flame = t->sig > r->entry_flame ? t->sig : r->entry_flame;
-    int passing = ffr_entry_passing_flame(cfg, &r->entry_peak, t->sig);
+    int passing = ffr_entry_passing_flame(cfg, &r->entry_peak, t->sig, t->moved);
     if (t->moved >= cfg->room_entry_mm || st->lines.edge || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm
         || passing) {
         ffr_stop(st);

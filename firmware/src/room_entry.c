@@ -7,7 +7,8 @@
  * - The entry may drive past the candle: the flame, near, falls off its
  *   peak as it leaves the sensors' view to the side; the entry ends there,
  *   before the body comes alongside the candle and the scan's turn in place
- *   sweeps a corner into it (ffr_entry_passing_flame).
+ *   sweeps a corner into it (ffr_entry_passing_flame), but not before the
+ *   body is far enough in for that turn to clear the door's jambs.
  * - The scan then may begin just past the flame: its first reading is the
  *   tail of a flame behind the scan's way of turning, and the signal only
  *   falls. That fall is no peak passed; the flame sensors' balance at the
@@ -32,6 +33,16 @@
  * the fans' reach (room.c: ~8 x at 30 cm at the edge of the sensors' view);
  * a weaker one passed is left to the scan */
 #define ENTRY_NEAR_X 8.0f
+/* chosen: a passed flame ends the entry only once the axle is this far past
+ * the doorway line (mm; the line sensor met it line_sensor_x_mm ahead of
+ * the axle). The scan turns in place there and its front corners sweep the
+ * body's corner radius (156 mm): 100 mm past the line, 90 mm past the
+ * jamb's face (walls ~2 cm thick), clears a jamb 127 mm or more to the side,
+ * a robot up to 10 cm off a 46 cm door's middle. Sooner, the scan's turn
+ * swept a corner into the jamb (2001 plan, +-2.5 cm jitter, candles beside
+ * the door: the flame passed with the axle 62 mm past the line;
+ * docs/robustness.md) */
+#define ENTRY_AXLE_IN_MM 100.0f
 /* chosen: the balance (left - right over the sum) beyond which the flame is
  * on one side; the sensors' views overlap straight ahead, where it is ~0 */
 #define TRAIL_BAL 0.25f
@@ -55,12 +66,13 @@
 /* no minimum yet */
 #define AHEAD_NONE 30000
 
-int ffr_entry_passing_flame(const ffr_config_t *cfg, float *peak, float sig)
+int ffr_entry_passing_flame(const ffr_config_t *cfg, float *peak, float sig, float moved_mm)
 {
     if (sig > *peak) {
         *peak = sig;
     }
-    return *peak >= ENTRY_NEAR_X * cfg->flame_detect && sig < ENTRY_PAST_PEAK * *peak;
+    return *peak >= ENTRY_NEAR_X * cfg->flame_detect && sig < ENTRY_PAST_PEAK * *peak
+           && moved_mm >= cfg->line_sensor_x_mm + ENTRY_AXLE_IN_MM;
 }
 
 int ffr_scan_starts_trailing(const ffr_config_t *cfg, float dir, float left, float right, float sig)

@@ -390,14 +390,31 @@ TEST(the_side_of_a_flame_and_a_flame_passed_by)
     /* passed by: within reach (8 x), then below 0.6 of the peak; not before
      * (a flicker of 30 % is no passing) */
     for (i = 0; i < 20; ++i) {
-        CHECK(ffr_entry_passing_flame(&cfg, &peak, d * (1.0f + 0.5f * (float)i)) == 0);
+        CHECK(ffr_entry_passing_flame(&cfg, &peak, d * (1.0f + 0.5f * (float)i), 330.0f) == 0);
     }
     CHECK(peak > 8.0f * d);
-    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.7f * peak) == 0);
-    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.55f * peak) == 1);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.7f * peak, 330.0f) == 0);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.55f * peak, 330.0f) == 1);
     peak = 0.0f;
-    CHECK(ffr_entry_passing_flame(&cfg, &peak, 7.5f * d) == 0);
-    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.5f * d) == 0); /* a flame passed farther off: on */
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 7.5f * d, 330.0f) == 0);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.5f * d, 330.0f) == 0); /* a flame passed farther off: on */
+}
+
+TEST(a_flame_passed_before_the_body_clears_the_door_does_not_end_the_entry)
+{
+    /* the scan's turn in place needs the axle 100 mm past the doorway line
+     * (the line sensor met it 110 mm ahead of the axle): a near flame
+     * passed sooner leaves the entry driving on, and the same fall once the
+     * axle is that far in ends it */
+    ffr_config_t cfg;
+    float peak = 0.0f, d;
+    ffr_config_default(&cfg);
+    d = cfg.flame_detect;
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 10.0f * d, 100.0f) == 0);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 4.0f * d, 170.0f) == 0);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 4.0f * d, 209.0f) == 0);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 4.0f * d, 210.0f) == 1);
+    CHECK(peak == 10.0f * d); /* the peak kept while the body was in the door */
 }
 
 TEST(the_line_sensor_past_the_doorway_line_on_the_way_out)
@@ -555,6 +572,7 @@ SUITE(room,
       TEST_REF(a_front_ranger_folding_back_stops_the_approach),
       TEST_REF(a_scan_begun_just_past_a_near_flame_turns_on_to_it),
       TEST_REF(the_side_of_a_flame_and_a_flame_passed_by),
+      TEST_REF(a_flame_passed_before_the_body_clears_the_door_does_not_end_the_entry),
       TEST_REF(the_line_sensor_past_the_doorway_line_on_the_way_out),
       TEST_REF(the_approach_slows_for_its_own_front_stop),
       TEST_REF(a_strong_flame_crossing_to_the_trailing_side_ends_the_scan),
