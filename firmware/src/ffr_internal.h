@@ -296,10 +296,10 @@ int ffr_scan_starts_trailing(const ffr_config_t *cfg, float dir, float left, flo
  * least 8 x flame_detect), has fallen off its peak (kept in *peak, 0 at the
  * entry's start) -- the flame leaves the sensors' view to the side, the
  * candle beside the robot's way in: the entry ends here, before the body
- * comes alongside it (the scan turns in place); moved_mm: the entry's travel
- * since the line sensor met the doorway line, 0 until the axle is far
- * enough past the line for that turn to clear the door's jambs
- * (room_entry.c ENTRY_AXLE_IN_MM). */
+ * comes alongside it (the scan turns in place). moved_mm is the entry's
+ * travel since the line sensor met the doorway line: the answer stays 0
+ * until the axle is far enough past the line for that turn to clear the
+ * door's jambs (room_entry.c ENTRY_AXLE_IN_MM). */
 int ffr_entry_passing_flame(const ffr_config_t *cfg, float *peak, float sig, float moved_mm);
 /* The approach's front ranger watch: reset at the approach's start. */
 void ffr_ahead_reset(ffr_room_state_t *r);
