@@ -2085,6 +2085,17 @@ TEST(a_wall_beside_with_little_floor_ahead_still_gets_the_s)
     CHECK(s_forward);
 }
 
+/* the first look with the left front and rear rangers both within the
+ * span (112 and 118 mm): the rear fold move's readings; ir: as fed */
+static void rear_fold_start(rig_t *r, const ffr_config_t *cfg, float ir[FFR_IR_COUNT])
+{
+    rig_init(r, cfg);
+    rig_no_walls(cfg, ir);
+    ir[FFR_IR_LF] = 112.0f;
+    ir[FFR_IR_LR] = 118.0f;
+    look_from(r, cfg, ir);
+}
+
 /* A fold move forward (the rear fold move, or the move after a rear peak
  * passed) watches its leading end. A front ranger that read within the
  * fold-back span when the move began and now reads LEAD_GROW_MM (8 mm)
@@ -2097,17 +2108,6 @@ TEST(a_wall_beside_with_little_floor_ahead_still_gets_the_s)
  * Not for a reading grown less, for one that began outside the span (a wall
  * as it is, receding), on a move backward (rear_passed watches that), nor on
  * the last of the four moves before the sweep. */
-/* the first look with the left front and rear rangers both within the
- * span (112 and 118 mm): the rear fold move's readings; ir: as fed */
-static void rear_fold_start(rig_t *r, const ffr_config_t *cfg, float ir[FFR_IR_COUNT])
-{
-    rig_init(r, cfg);
-    rig_no_walls(cfg, ir);
-    ir[FFR_IR_LF] = 112.0f;
-    ir[FFR_IR_LR] = 118.0f;
-    look_from(r, cfg, ir);
-}
-
 enum { GROWN, GROWN_LESS, BEGAN_FAR, BACKWARD, LAST_MOVE };
 static void fold_move_watched(rig_t *r, const ffr_config_t *cfg, int kind)
 {

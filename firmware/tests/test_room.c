@@ -390,14 +390,14 @@ TEST(the_side_of_a_flame_and_a_flame_passed_by)
     /* passed by: within reach (8 x), then below 0.6 of the peak; not before
      * (a flicker of 30 % is no passing) */
     for (i = 0; i < 20; ++i) {
-        CHECK(ffr_entry_passing_flame(&cfg, &peak, d * (1.0f + 0.5f * (float)i), 330.0f) == 0);
+        CHECK(ffr_entry_passing_flame(&cfg, &peak, d * (1.0f + 0.5f * (float)i), cfg.room_entry_mm) == 0);
     }
     CHECK(peak > 8.0f * d);
-    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.7f * peak, 330.0f) == 0);
-    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.55f * peak, 330.0f) == 1);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.7f * peak, cfg.room_entry_mm) == 0);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.55f * peak, cfg.room_entry_mm) == 1);
     peak = 0.0f;
-    CHECK(ffr_entry_passing_flame(&cfg, &peak, 7.5f * d, 330.0f) == 0);
-    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.5f * d, 330.0f) == 0); /* a flame passed farther off: on */
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 7.5f * d, cfg.room_entry_mm) == 0);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 0.5f * d, cfg.room_entry_mm) == 0); /* a flame passed farther off: on */
 }
 
 TEST(a_flame_passed_before_the_body_clears_the_door_does_not_end_the_entry)
@@ -407,13 +407,14 @@ TEST(a_flame_passed_before_the_body_clears_the_door_does_not_end_the_entry)
      * passed sooner leaves the entry driving on, and the same fall once the
      * axle is that far in ends it */
     ffr_config_t cfg;
-    float peak = 0.0f, d;
+    float peak = 0.0f, d, in;
     ffr_config_default(&cfg);
     d = cfg.flame_detect;
+    in = cfg.line_sensor_x_mm + 100.0f; /* the axle 100 mm past the line */
     CHECK(ffr_entry_passing_flame(&cfg, &peak, 10.0f * d, 100.0f) == 0);
     CHECK(ffr_entry_passing_flame(&cfg, &peak, 4.0f * d, 170.0f) == 0);
-    CHECK(ffr_entry_passing_flame(&cfg, &peak, 4.0f * d, 209.0f) == 0);
-    CHECK(ffr_entry_passing_flame(&cfg, &peak, 4.0f * d, 210.0f) == 1);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 4.0f * d, in - 1.0f) == 0);
+    CHECK(ffr_entry_passing_flame(&cfg, &peak, 4.0f * d, in) == 1);
     CHECK(peak == 10.0f * d); /* the peak kept while the body was in the door */
 }
 
