@@ -321,7 +321,8 @@ typedef struct {
     uint8_t next;                  /* the search under way: the next heading it looks along */
     uint8_t n_via;
     uint8_t retrace;               /* backing out: 0 not decided, 1 by the turning points, 2 straight */
-    uint8_t reserved[2];
+    uint8_t aside_next;            /* the last room's third point: the next heading its search looks along (room.c) */
+    uint8_t reserved;
 } ffr_obstacles_t;
 
 typedef struct {
@@ -349,7 +350,7 @@ typedef struct {
     ffr_scan_square_t square;      /* the walls seen in the scan (turn_calibration.c) */
     float entry_flame;             /* the strongest flame sum driving in (room.c) */
     int16_t deeper_mm;             /* how far the second scan point is beyond the first */
-    uint8_t scans;                 /* scan points used in this room (1, or 2: deeper in) */
+    uint8_t scans;                 /* scan points used in this room (1; 2: deeper in; 3: aside, the last room) */
     uint8_t closer_steps;          /* steps closer made after a strength stop's fans failed (room.c) */
     ffr_obstacles_t obst;          /* the room's obstacles (obstacle_avoid.c)  */
     float entry_peak;              /* the entry's strongest flame signal so far (room_entry.c) */

@@ -283,6 +283,8 @@ float ffr_obst_detour(ffr_obstacles_t *o, const ffr_config_t *cfg, const ffr_odo
  * approach (begin: its first), the position is kept (o->via_*, three at
  * most) where the heading has turned 15 degrees since the last kept. */
 void ffr_obst_trail(ffr_obstacles_t *o, const ffr_odometry_t *odo, int begin);
+/* The position kept as the trail's next point now (room.c: the last room's third scan point). */
+void ffr_obst_keep_point(ffr_obstacles_t *o, const ffr_odometry_t *odo);
 /* The nearest marked cell's centre from (x, y), mm; radius_mm if none nearer. */
 float ffr_obst_nearest_mm(const ffr_obstacles_t *o, float x_mm, float y_mm, float radius_mm);
 
@@ -439,6 +441,10 @@ void ffr_route_begin(ffr_state_t *st, uint8_t pc);
 /* route.c: the side whose opening the route's current step follows to
  * (FOLLOW ... OPEN_L/R), -1 for any other step or the explorer */
 int ffr_route_open_side(const ffr_state_t *st);
+/* route.c: 1 when the current step searches the route's last room (a ROOM
+ * step with no other ROOM before END): the rooms before it had no flame, so
+ * the candle is in it. 0 on a way home and for the explorer. */
+int ffr_route_last_room(const ffr_state_t *st);
 void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in);
 
 /* explore.c: the arbitrary start mode (cfg->start_area == FFR_START_HALLWAY).

@@ -99,6 +99,7 @@ void ffr_obst_reset(ffr_obstacles_t *o, float cx_mm, float cy_mm)
     o->next = 0u;
     o->n_via = 0u;
     o->retrace = 0u;
+    o->aside_next = 0u;
 }
 
 static void keep_point(ffr_obstacles_t *o, const ffr_odometry_t *odo)
@@ -111,6 +112,8 @@ static void keep_point(ffr_obstacles_t *o, const ffr_odometry_t *odo)
     o->n_via = (uint8_t)(k + 1u);
     o->trail_rad = odo->heading_rad;
 }
+
+void ffr_obst_keep_point(ffr_obstacles_t *o, const ffr_odometry_t *odo) { keep_point(o, odo); }
 
 void ffr_obst_trail(ffr_obstacles_t *o, const ffr_odometry_t *odo, int begin)
 {

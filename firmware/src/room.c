@@ -30,6 +30,9 @@
  *   VERIFY --stays out verify_ms--> BACK_TURN --> BACK_DRIVE --> LEAVE_TURN;  --back--> EXTINGUISH
  *   LEAVE_TURN --facing out--> LEAVE_LINE --line--> LEAVE_OUT --out--> (left)
  *   SCAN --a full turn, no flame, but one seen driving in--> DEEPER --> SCAN (once a room)
+ *   the route's last room (the candle must be in it): SCAN --a full turn, no flame--> DEEPER --> SCAN
+ *        --a full turn, no flame--> ASIDE_TURN --> ASIDE --> SCAN --a full turn, no flame--> BACK_TURN
+ *        (ASIDE_TURN --no way open--> LEAVE_TURN)
  *
  * Furniture (obstacle_avoid.c): the scan and the approach put the rangers'
  * hits into a grid; the approach detours around what is in the body's way to
@@ -51,6 +54,8 @@ enum {
     RP_LEAVE_LINE,
     RP_LEAVE_OUT,
     RP_DEEPER,
+    RP_ASIDE_TURN,
+    RP_ASIDE,
     RP_COUNT
 };
 /* a handler's "no transition" */
@@ -128,6 +133,17 @@ enum {
 /* chosen: the second scan point at most this far beyond the first, along the
  * entry heading (a room is 1-1.25 m deep; the first point ~0.4 m in) */
 #define DEEPER_MM 400.0f
+/* chosen: the last room's third scan point, off the entry's line: this far
+ * from the second (on up to ASIDE_ON_MM more while a scan there would sweep
+ * something the rangers saw), at this angle (or twice it) to the entry
+ * heading, only where the grid has at least ASIDE_MIN_MM clear, and
+ * ASIDE_SHORT_MM short of the first thing it has */
+#define ASIDE_MM 400.0f
+#define ASIDE_DEG 45.0f
+#define ASIDE_MIN_MM 150.0f
+#define ASIDE_ON_MM 150.0f
+#define ASIDE_SHORT_MM 20.0f
+#define ASIDE_HEADINGS 4u
 /* the scan turns in place: nothing the rangers saw within the body's corner
  * radius (156 mm) and this margin of the second scan point (chosen) */
 #define DEEPER_CLEAR_MARGIN_MM 35.0f
@@ -215,7 +231,8 @@ static void enter(ffr_state_t *st, uint8_t p)
 {
     static const uint8_t codes[RP_COUNT] = {
         FFR_ST_ENTER, FFR_ST_ENTER, FFR_ST_SCAN, FFR_ST_SCAN, FFR_ST_APPROACH, FFR_ST_EXTINGUISH,
-        FFR_ST_VERIFY, FFR_ST_TO_DOOR, FFR_ST_TO_DOOR, FFR_ST_EXIT, FFR_ST_EXIT, FFR_ST_EXIT, FFR_ST_ENTER};
+        FFR_ST_VERIFY, FFR_ST_TO_DOOR, FFR_ST_TO_DOOR, FFR_ST_EXIT, FFR_ST_EXIT, FFR_ST_EXIT, FFR_ST_ENTER,
+        FFR_ST_ENTER, FFR_ST_ENTER};
     ffr_room_state_t *r = &st->room;
     if (p == RP_SCAN) {
         r->start_heading_rad = st->odo.heading_rad;
@@ -406,12 +423,21 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
             ffr_stop(st);
             square_up(st);
             if (r->scans < 2u
-                && r->entry_flame >= FLAME_DARK_NOMINAL + ENTRY_SEEN_SHARE * (cfg->flame_detect - FLAME_DARK_NOMINAL)) {
-                /* seen driving in, not from here: look again deeper in */
+                && (r->entry_flame >= FLAME_DARK_NOMINAL + ENTRY_SEEN_SHARE * (cfg->flame_detect - FLAME_DARK_NOMINAL)
+                    || ffr_route_last_room(st))) {
+                /* seen driving in, not from here (or the last room, where
+                 * the candle must be): look again deeper in */
                 r->scans = 2u;
                 return RP_DEEPER;
             }
-            return RP_LEAVE_TURN; /* no flame in this room */
+            if (r->scans == 2u && ffr_route_last_room(st)) {
+                r->scans = 3u;
+                r->obst.aside_next = 0u;
+                r->best_front_mm = 0.0f; /* no heading found yet */
+                return RP_ASIDE_TURN;
+            }
+            /* no flame in this room; from a third point, back to the second first */
+            return r->scans == 3u ? RP_BACK_TURN : RP_LEAVE_TURN;
         }
         if (st->t_ms - r->lost_since_ms >= FFR_FLAME_LOST_MS) {
             /* the flame approached is gone, not put out, and not found again */
@@ -815,6 +841,77 @@ static uint8_t on_deeper(ffr_state_t *st, room_tick_t *t)
     return RP_STAY;
 }
 
+/* The last room's third scan point: the route's rooms before it held no
+ * flame, so the candle is in this one, hidden from both scan points on the
+ * entry's line by what stands in the room. Off that line, toward the most
+ * open of the headings ASIDE_DEG and 2 x ASIDE_DEG either side of the entry
+ * heading as the grid has it, looked along a half corridor a tick (a
+ * corridor's walk is the tick's costliest work: "What a tick costs",
+ * docs/firmware.md); none with ASIDE_MIN_MM clear: no third point, out
+ * from here. The heading is kept in best_heading_rad, as TURN_BEST's, and
+ * how far to go in best_front_mm (the scan there sets both afresh). */
+static uint8_t on_aside_turn(ffr_state_t *st, room_tick_t *t)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    ffr_room_state_t *r = &st->room;
+    (void)t;
+    if (r->obst.aside_next < 2u * ASIDE_HEADINGS) {
+        /* heading k's corridor in two halves, the near one first (a tick
+         * each: a half is about as long as the approach's corridor) */
+        uint8_t k = (uint8_t)(r->obst.aside_next / 2u), far = (uint8_t)(r->obst.aside_next & 1u);
+        float off = (float)((k & 1u) ? -1 : 1) * (float)(k / 2u + 1u) * ASIDE_DEG * FFR_DEG;
+        float dir = r->entry_heading_rad + off;
+        float half = 0.5f * (ASIDE_MM + ASIDE_ON_MM), from = far ? half : 0.0f;
+        float free_mm = from + ffr_obst_free_mm(&r->obst, cfg, st->odo.x_mm + from * ffr_cosf(dir),
+                                                st->odo.y_mm + from * ffr_sinf(dir), dir, dir + 0.5f * FFR_PI,
+                                                half, NULL);
+        ffr_stop(st);
+        if (!far && free_mm >= half) {
+            r->obst.aside_next++; /* the near half clear: the far one next tick */
+            return RP_STAY;
+        }
+        if (free_mm > ASIDE_MIN_MM && free_mm - ASIDE_SHORT_MM > r->best_front_mm) {
+            r->best_heading_rad = closest(st->odo.heading_rad, dir);
+            r->best_front_mm = free_mm - ASIDE_SHORT_MM;
+        }
+        r->obst.aside_next = (uint8_t)(2u * k + 2u);
+        return RP_STAY;
+    }
+    if (r->best_front_mm <= 0.0f) {
+        return RP_LEAVE_TURN;
+    }
+    return turn_to(st, r->best_heading_rad) ? RP_ASIDE : RP_STAY;
+}
+
+/* Drive to the third point, along the corridor the grid has clear (its
+ * length kept in best_front_mm, the scan's, which the scan there sets
+ * afresh); the point is kept as the first of the trail, so the way back
+ * (to the second point, on the entry's line, then out as ever) runs through
+ * it. Where the scan's turn in place there would sweep something the
+ * rangers saw: no scan, back. */
+static uint8_t on_aside(ffr_state_t *st, room_tick_t *t)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    ffr_room_state_t *r = &st->room;
+    float need = ffr_sqrtf(cfg->body_front_mm * cfg->body_front_mm + cfg->body_half_width_mm * cfg->body_half_width_mm)
+                 + DEEPER_CLEAR_MARGIN_MM;
+    float most = r->best_front_mm;
+    float len = most < ASIDE_MM ? most : ASIDE_MM;
+    int clear;
+    ffr_obst_record(&r->obst, cfg, &st->odo, &st->ir_geom, st->ir_mm);
+    clear = ffr_obst_nearest_mm(&r->obst, st->odo.x_mm, st->odo.y_mm, need) >= need;
+    if ((t->moved >= len && clear) || t->moved >= most || st->lines.edge
+        || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
+        ffr_stop(st);
+        r->obst.n_via = 0u;
+        ffr_obst_keep_point(&r->obst, &st->odo);
+        return clear ? RP_SCAN : RP_BACK_TURN;
+    }
+    ffr_drive_heading(st, r->best_heading_rad,
+                      clear ? ffr_stopping_speed(len - t->moved, cfg->room_speed_mm_s) : cfg->room_speed_mm_s);
+    return RP_STAY;
+}
+
 /* ---- the dispatcher ----------------------------------------------------- */
 
 ffr_room_result_t ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
@@ -822,7 +919,7 @@ ffr_room_result_t ffr_room_step(ffr_state_t *st, const ffr_inputs_t *in)
     static const room_handler_t handlers[RP_COUNT] = {
         on_enter_line, on_enter_in,  on_scan,       on_turn_best,  on_approach,   on_extinguish,
         on_verify,     on_back_turn, on_back_drive, on_leave_turn, on_leave_line, on_leave_out,
-        on_deeper};
+        on_deeper,     on_aside_turn, on_aside};
     ffr_room_state_t *r = &st->room;
     room_tick_t t;
     uint8_t next;

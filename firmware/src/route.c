@@ -28,6 +28,28 @@ int ffr_route_open_side(const ffr_state_t *st)
     return s->event == FFR_EV_OPEN_R ? FFR_SIDE_RIGHT : -1;
 }
 
+/* The furniture mode's pieces may hide the candle from a room's scan points;
+ * the last room's is looked for harder, at no cost to the rooms before it
+ * (room.c, ASIDE). */
+int ffr_route_last_room(const ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    uint8_t pc;
+    if (cfg->start_area == FFR_START_HALLWAY || st->returning || st->route.pc >= cfg->route_len
+        || cur(st)->op != FFR_OP_ROOM) {
+        return 0;
+    }
+    for (pc = (uint8_t)(st->route.pc + 1u); pc < cfg->route_len && pc < FFR_ROUTE_MAX; ++pc) {
+        if (cfg->route[pc].op == FFR_OP_ROOM) {
+            return 0;
+        }
+        if (cfg->route[pc].op == FFR_OP_END) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 static void begin_current(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;

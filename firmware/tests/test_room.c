@@ -59,6 +59,26 @@ static int into_the_fans(rig_t *r, const ffr_config_t *cfg)
     return r->out.state == FFR_ST_EXTINGUISH && r->out.fan == 1;
 }
 
+/* ROOM 1, ROOM 2, END: room 1 is not the route's last room */
+static void two_room_route(ffr_config_t *cfg)
+{
+    rig_room_route(cfg, 0);
+    cfg->route[1].op = FFR_OP_ROOM;
+    cfg->route[1].arg = 2;
+    cfg->route[2].op = FFR_OP_END;
+    cfg->route_len = 3;
+}
+
+/* tick with dark flame sensors until the state is no longer `state` */
+static int run_while(rig_t *r, uint8_t state, int max_ticks)
+{
+    int i;
+    for (i = 0; i < max_ticks && r->out.state == state; ++i) {
+        rig_tick(r);
+    }
+    return r->out.state != state;
+}
+
 TEST(no_doorway_line_on_the_way_in_fails_no_line)
 {
     /* over the class of limits: each fails once it has driven that far */
@@ -222,7 +242,7 @@ TEST(a_far_flame_lost_is_searched_for_elsewhere)
     rig_t r;
     int i;
     ffr_config_default(&cfg);
-    rig_room_route(&cfg, 0);
+    two_room_route(&cfg);
     CHECK(into_the_approach(&r, &cfg, 300u));
     for (i = 0; i < 5; ++i) {
         rig_tick(&r);
@@ -560,6 +580,155 @@ TEST(the_fans_go_on_once_the_flame_is_within_their_reach)
     }
 }
 
+/* ---- the route's last room (furniture may hide its candle) ---- */
+
+TEST(the_last_room_is_the_route_step_with_no_room_after_it_before_the_end)
+{
+    /* the default route visits rooms 1-4 (steps 4, 12, 18, 22), then END:
+     * room 4 alone is the last; not on a way home, nor for the explorer */
+    ffr_state_t st;
+    uint8_t pc;
+    ffr_config_default(&st.cfg);
+    st.returning = 0u;
+    for (pc = 0u; pc < st.cfg.route_len; ++pc) {
+        st.route.pc = pc;
+        CHECK(ffr_route_last_room(&st) == (pc == 22u));
+    }
+    CHECK(st.cfg.route[22].op == FFR_OP_ROOM && st.cfg.route[22].arg == 4u && st.cfg.route[23].op == FFR_OP_END);
+    st.route.pc = 22u;
+    st.returning = 1u;
+    CHECK(ffr_route_last_room(&st) == 0);
+    st.returning = 0u;
+    st.cfg.start_area = FFR_START_HALLWAY;
+    CHECK(ffr_route_last_room(&st) == 0);
+    st.cfg.start_area = FFR_START_HOME;
+    st.cfg.route_len = 23u; /* no END: no room is known to be the last */
+    CHECK(ffr_route_last_room(&st) == 0);
+}
+
+TEST(a_room_before_the_last_scanned_without_a_flame_is_left)
+{
+    /* no flame seen driving in nor from the scan point: out at once, one scan */
+    ffr_config_t cfg;
+    rig_t r;
+    ffr_config_default(&cfg);
+    two_room_route(&cfg);
+    CHECK(into_the_scan(&r, &cfg));
+    CHECK(run_while(&r, FFR_ST_SCAN, 2000));
+    CHECK(r.out.state == FFR_ST_EXIT);
+    CHECK(r.st.room.scans == 1u);
+}
+
+TEST(the_last_room_scanned_without_a_flame_is_scanned_deeper_in_then_aside)
+{
+    /* The route's rooms before it held no flame: the candle is in this one,
+     * hidden (furniture). A second scan DEEPER along the entry line, then a
+     * third off it (45 degrees: the rig's rangers see nothing, every way is
+     * open), kept as the trail's first point; none finds it: back to the
+     * second point, out along the entry line, and the route ends */
+    ffr_config_t cfg;
+    rig_t r;
+    int i;
+    float h0, x1, y1, x2, y2, x3, y3, c, s, along, across;
+    ffr_config_default(&cfg);
+    rig_room_route(&cfg, 0);
+    CHECK(into_the_scan(&r, &cfg));
+    h0 = r.st.room.entry_heading_rad;
+    x1 = r.st.odo.x_mm;
+    y1 = r.st.odo.y_mm;
+    CHECK(run_while(&r, FFR_ST_SCAN, 2000));
+    CHECK(r.out.state == FFR_ST_ENTER); /* DEEPER */
+    CHECK(r.st.room.scans == 2u);
+    CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 1000));
+    x2 = r.st.odo.x_mm;
+    y2 = r.st.odo.y_mm;
+    c = ffr_cosf(h0);
+    s = ffr_sinf(h0);
+    along = (x2 - x1) * c + (y2 - y1) * s;
+    CHECK(along > 350.0f && along < 410.0f); /* DEEPER_MM on the entry line */
+    CHECK(ffr_absf(-(x2 - x1) * s + (y2 - y1) * c) < 40.0f); /* (the drive settling after the turn) */
+    CHECK(run_while(&r, FFR_ST_SCAN, 2000));
+    CHECK(r.out.state == FFR_ST_ENTER); /* the aside */
+    CHECK(r.st.room.scans == 3u);
+    for (i = 0; i < 8; ++i) {
+        rig_tick(&r); /* the four headings, each clear: two half corridors a heading, one a tick */
+    }
+    CHECK(r.st.room.obst.aside_next == 8u);
+    CHECK_NEAR(ffr_wrap_pi(r.st.room.best_heading_rad - h0), 45.0f * FFR_DEG, 1e-4);
+    CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 1000));
+    x3 = r.st.odo.x_mm;
+    y3 = r.st.odo.y_mm;
+    along = (x3 - x2) * c + (y3 - y2) * s;
+    across = -(x3 - x2) * s + (y3 - y2) * c;
+    CHECK(ffr_sqrtf(along * along + across * across) > 350.0f);
+    CHECK(across > 0.6f * along && across < 1.4f * along); /* 45 degrees to the left */
+    CHECK(r.st.room.obst.n_via == 1u);
+    CHECK(ffr_absf((float)r.st.room.obst.via_x_mm[0] - x3) < 1.0f && ffr_absf((float)r.st.room.obst.via_y_mm[0] - y3) < 1.0f);
+    CHECK(run_while(&r, FFR_ST_SCAN, 2000));
+    CHECK(r.out.state == FFR_ST_TO_DOOR); /* back to the second point */
+    CHECK(rig_run_until_state(&r, FFR_ST_EXIT, 2000));
+    CHECK(ffr_absf(r.st.odo.x_mm - x2) < 20.0f && ffr_absf(r.st.odo.y_mm - y2) < 20.0f);
+    CHECK((r.out.flags & FFR_FLAG_FAILED) == 0);
+    CHECK(rig_run_until_driving(&r, 400));
+    rig_line(&r, 0, 3);
+    CHECK(rig_run_until_state(&r, FFR_ST_FAILED, 1000));
+    CHECK(r.out.fail_code == FFR_FAIL_NO_FLAME);
+}
+
+TEST(the_last_room_with_no_way_aside_is_left_after_the_second_scan)
+{
+    /* something the rangers saw 200 mm off the second point along each of
+     * the four aside headings: no third point, out from the second */
+    ffr_config_t cfg;
+    rig_t r;
+    int k;
+    float h0, x, y;
+    ffr_config_default(&cfg);
+    rig_room_route(&cfg, 0);
+    CHECK(into_the_scan(&r, &cfg));
+    h0 = r.st.room.entry_heading_rad;
+    CHECK(run_while(&r, FFR_ST_SCAN, 2000));
+    CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 1000));
+    for (k = -2; k <= 2; ++k) {
+        float dir = h0 + (float)k * 45.0f * FFR_DEG;
+        if (k != 0) {
+            ffr_obst_mark(&r.st.room.obst, r.st.odo.x_mm + 200.0f * ffr_cosf(dir), r.st.odo.y_mm + 200.0f * ffr_sinf(dir));
+        }
+    }
+    CHECK(run_while(&r, FFR_ST_SCAN, 2000));
+    CHECK(r.out.state == FFR_ST_ENTER); /* looking along the four, a near half a tick, stopped */
+    x = r.st.odo.x_mm;
+    y = r.st.odo.y_mm;
+    CHECK(rig_run_until_state(&r, FFR_ST_EXIT, 10));
+    CHECK(r.st.room.obst.aside_next == 8u);
+    CHECK(r.st.room.obst.n_via == 0u);
+    CHECK(ffr_absf(r.st.odo.x_mm - x) < 5.0f && ffr_absf(r.st.odo.y_mm - y) < 5.0f);
+}
+
+TEST(a_flame_seen_from_the_aside_point_is_approached)
+{
+    /* the third scan finds the flame: the approach starts there, the point
+     * kept to back out through */
+    ffr_config_t cfg;
+    rig_t r;
+    int i;
+    ffr_config_default(&cfg);
+    rig_room_route(&cfg, 0);
+    CHECK(into_the_scan(&r, &cfg));
+    CHECK(run_while(&r, FFR_ST_SCAN, 2000));
+    CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 1000));
+    CHECK(run_while(&r, FFR_ST_SCAN, 2000));
+    CHECK(r.st.room.scans == 3u);
+    CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 1000));
+    for (i = 0; i < 600 && r.out.state == FFR_ST_SCAN; ++i) {
+        r.in.flame[0] = r.in.flame[1] = NEAR_EACH;
+        rig_tick(&r);
+    }
+    CHECK(rig_run_until_state(&r, FFR_ST_APPROACH, 400));
+    CHECK(r.st.room.obst.n_via == 1u);
+    CHECK((r.out.flags & FFR_FLAG_FAILED) == 0);
+}
+
 SUITE(room,
       TEST_REF(no_doorway_line_on_the_way_in_fails_no_line),
       TEST_REF(no_doorway_line_on_the_way_out_fails_no_line),
@@ -577,4 +746,9 @@ SUITE(room,
       TEST_REF(the_line_sensor_past_the_doorway_line_on_the_way_out),
       TEST_REF(the_approach_slows_for_its_own_front_stop),
       TEST_REF(a_strong_flame_crossing_to_the_trailing_side_ends_the_scan),
-      TEST_REF(the_fans_go_on_once_the_flame_is_within_their_reach));
+      TEST_REF(the_fans_go_on_once_the_flame_is_within_their_reach),
+      TEST_REF(the_last_room_is_the_route_step_with_no_room_after_it_before_the_end),
+      TEST_REF(a_room_before_the_last_scanned_without_a_flame_is_left),
+      TEST_REF(the_last_room_scanned_without_a_flame_is_scanned_deeper_in_then_aside),
+      TEST_REF(the_last_room_with_no_way_aside_is_left_after_the_second_scan),
+      TEST_REF(a_flame_seen_from_the_aside_point_is_approached));
