@@ -419,7 +419,7 @@ typedef struct {
     uint8_t bent;                  /* a turn since the last line edge         */
     uint8_t rooms_at_flip;         /* rooms_searched when the walls last changed */
     uint8_t backing;               /* wrap: backing to an opening's middle passed */
-    uint8_t reserved;
+    uint8_t flips;                 /* the walls changed so far (a loop's rooms searched, no flame) */
     float start_mm;                /* odometry distance where the phase began (a follow: its leg, the probe before it included) */
     float goal_mm;                 /* distance goal (wrap, home, back; backing: along the held heading) */
     float edge_mm;                 /* where the last line edge was crossed (-1: none to pair) */

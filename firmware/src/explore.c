@@ -20,7 +20,9 @@
  *          come round the loop it is on, and if it searched rooms on the
  *          way it changes walls (a room whose walls
  *          stand free of the outer wall, an island, is on the other wall's
- *          loop; home is in a hallway between both).
+ *          loop; home is in a hallway between both); every room searched
+ *          from then on is searched harder (a candle hidden by furniture:
+ *          room.c, search_harder).
  *   after the flame is out a doorway is not entered again: a line alone at
  *          a probe turns the robot round (BACK) out to the hallway.
  *
@@ -52,7 +54,7 @@ void ffr_explore_reset(ffr_explore_t *e)
     e->bent = 0;
     e->rooms_at_flip = 0;
     e->backing = 0;
-    e->reserved = 0;
+    e->flips = 0;
     e->start_mm = 0.0f;
     e->goal_mm = 0.0f;
     e->edge_mm = EX_NO_EDGE;
@@ -165,12 +167,20 @@ static int line_edge(ffr_state_t *st)
      * already (home at a junction), and that opening is the way on. */
     if (st->rooms_searched != e->rooms_at_flip) {
         e->rooms_at_flip = st->rooms_searched;
+        if (e->flips < 255u) {
+            e->flips = (uint8_t)(e->flips + 1u);
+        }
         e->side = (uint8_t)(1u - e->side);
         e->phase = EX_FOLLOW;
         e->backing = 0;
         st->state = FFR_ST_FOLLOW;
     }
     return 1;
+}
+
+int ffr_explore_searched_round(const ffr_state_t *st)
+{
+    return st->explore.flips >= 1u && !(st->flags & FFR_FLAG_EXTINGUISHED);
 }
 
 #ifndef EX_YAW_MAX_DEG

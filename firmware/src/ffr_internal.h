@@ -445,6 +445,10 @@ int ffr_route_open_side(const ffr_state_t *st);
  * step with no other ROOM before END): the rooms before it had no flame, so
  * the candle is in it. 0 on a way home and for the explorer. */
 int ffr_route_last_room(const ffr_state_t *st);
+/* explore.c: 1 once the walk has come round a loop whose rooms it searched
+ * with no flame found (the walls changed): a candle hidden in a room it
+ * passed; every room searched from then on is searched harder (room.c) */
+int ffr_explore_searched_round(const ffr_state_t *st);
 void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in);
 
 /* explore.c: the arbitrary start mode (cfg->start_area == FFR_START_HALLWAY).

@@ -30,7 +30,8 @@
  *   VERIFY --stays out verify_ms--> BACK_TURN --> BACK_DRIVE --> LEAVE_TURN;  --back--> EXTINGUISH
  *   LEAVE_TURN --facing out--> LEAVE_LINE --line--> LEAVE_OUT --out--> (left)
  *   SCAN --a full turn, no flame, but one seen driving in--> DEEPER --> SCAN (once a room)
- *   the route's last room (the candle must be in it): SCAN --a full turn, no flame--> DEEPER --> SCAN
+ *   a room searched harder (search_harder: the route's last, or the explorer's
+ *   second round): SCAN --a full turn, no flame--> DEEPER --> SCAN
  *        --a full turn, no flame--> ASIDE_TURN --> ASIDE --> SCAN --a full turn, no flame--> BACK_TURN
  *        (ASIDE_TURN --no way open--> LEAVE_TURN)
  *
@@ -133,16 +134,18 @@ enum {
 /* chosen: the second scan point at most this far beyond the first, along the
  * entry heading (a room is 1-1.25 m deep; the first point ~0.4 m in) */
 #define DEEPER_MM 400.0f
-/* chosen: the last room's third scan point, off the entry's line: this far
- * from the second (on up to ASIDE_ON_MM more while a scan there would sweep
- * something the rangers saw), at this angle (or twice it) to the entry
+/* chosen: the third scan point (search_harder), off the entry's line: this
+ * far from the second (on up to ASIDE_ON_MM more while a scan there would
+ * sweep something the rangers saw), at this angle (or twice it) to the entry
  * heading, only where the grid has at least ASIDE_MIN_MM clear, and
- * ASIDE_SHORT_MM short of the first thing it has */
+ * ASIDE_SHORT_MM short of the first thing it has: a mark's cell is 64 mm,
+ * the thing in it up to half that nearer than its centre (with 20 mm an
+ * explorer's front corner met the piece: start seed 18, --furniture 4) */
 #define ASIDE_MM 400.0f
 #define ASIDE_DEG 45.0f
 #define ASIDE_MIN_MM 150.0f
 #define ASIDE_ON_MM 150.0f
-#define ASIDE_SHORT_MM 20.0f
+#define ASIDE_SHORT_MM 60.0f
 #define ASIDE_HEADINGS 4u
 /* the scan turns in place: nothing the rangers saw within the body's corner
  * radius (156 mm) and this margin of the second scan point (chosen) */
@@ -224,6 +227,16 @@ static float flame_sum(const ffr_state_t *st, const ffr_inputs_t *in)
 
 /* the unwrapped heading closest to `heading` that points the way `dir` does */
 static float closest(float heading, float dir) { return heading + ffr_wrap_pi(dir - heading); }
+
+/* A room whose candle scans from the entry's line may miss (furniture hides
+ * it): the route's last room, where the candle must be if none was found
+ * before (route.c), or any room the explorer searches once it has come round
+ * a loop with no flame (explore.c). There a second scan point is made with
+ * no flame seen driving in, and a third off the entry's line. */
+static int search_harder(const ffr_state_t *st)
+{
+    return st->cfg.start_area == FFR_START_HALLWAY ? ffr_explore_searched_round(st) : ffr_route_last_room(st);
+}
 
 /* Enter phase p: its clocks restart, the state reported is its chart state,
  * and the scan starts afresh. */
@@ -424,13 +437,13 @@ static uint8_t on_scan(ffr_state_t *st, room_tick_t *t)
             square_up(st);
             if (r->scans < 2u
                 && (r->entry_flame >= FLAME_DARK_NOMINAL + ENTRY_SEEN_SHARE * (cfg->flame_detect - FLAME_DARK_NOMINAL)
-                    || ffr_route_last_room(st))) {
-                /* seen driving in, not from here (or the last room, where
-                 * the candle must be): look again deeper in */
+                    || search_harder(st))) {
+                /* seen driving in, not from here (or a room searched
+                 * harder): look again deeper in */
                 r->scans = 2u;
                 return RP_DEEPER;
             }
-            if (r->scans == 2u && ffr_route_last_room(st)) {
+            if (r->scans == 2u && search_harder(st)) {
                 r->scans = 3u;
                 r->obst.aside_next = 0u;
                 r->best_front_mm = 0.0f; /* no heading found yet */
@@ -841,15 +854,15 @@ static uint8_t on_deeper(ffr_state_t *st, room_tick_t *t)
     return RP_STAY;
 }
 
-/* The last room's third scan point: the route's rooms before it held no
- * flame, so the candle is in this one, hidden from both scan points on the
- * entry's line by what stands in the room. Off that line, toward the most
- * open of the headings ASIDE_DEG and 2 x ASIDE_DEG either side of the entry
- * heading as the grid has it, looked along a half corridor a tick (a
- * corridor's walk is the tick's costliest work: "What a tick costs",
- * docs/firmware.md); none with ASIDE_MIN_MM clear: no third point, out
- * from here. The heading is kept in best_heading_rad, as TURN_BEST's, and
- * how far to go in best_front_mm (the scan there sets both afresh). */
+/* The third scan point of a room searched harder (the route's last, where
+ * the candle must be; the explorer's second round), whose candle both scan
+ * points on the entry's line missed: off that line, toward the most open of
+ * the headings ASIDE_DEG and 2 x ASIDE_DEG either side of the entry heading
+ * as the grid has it, looked along a half corridor a tick (a corridor's walk
+ * is the tick's costliest work: "What a tick costs", docs/firmware.md); none
+ * with ASIDE_MIN_MM clear: no third point, out from here. The heading is
+ * kept in best_heading_rad, as TURN_BEST's, and how far to go in
+ * best_front_mm (the scan there sets both afresh). */
 static uint8_t on_aside_turn(ffr_state_t *st, room_tick_t *t)
 {
     const ffr_config_t *cfg = &st->cfg;

@@ -413,6 +413,35 @@ TEST(every_straight_leg_of_the_explorer_is_trued_up_by_the_walls_beside)
     }
 }
 
+TEST(a_loop_with_its_rooms_searched_and_no_flame_makes_the_next_rooms_searched_harder)
+{
+    /* round a loop (home's two lines) with rooms searched on it and no
+     * flame: the walls change, and from then on every room is searched
+     * harder (room.c: a second and a third scan point); once the flame is
+     * out, no more */
+    ffr_config_t cfg;
+    rig_t r;
+    ffr_config_default(&cfg);
+    cfg.start_area = FFR_START_HALLWAY;
+    started_in_a_hallway(&r, &cfg);
+    CHECK(r.st.explore.flips == 0u);
+    CHECK(ffr_explore_searched_round(&r.st) == 0);
+    rig_line(&r, 5, 3);
+    rig_line(&r, 40, 3); /* home, no room searched yet: the same wall */
+    rig_tick(&r);
+    CHECK(r.st.explore.homes == 1 && r.st.explore.flips == 0u);
+    CHECK(ffr_explore_searched_round(&r.st) == 0);
+    r.st.rooms_searched = 2u; /* as the room task leaves it, two rooms on the loop */
+    rig_line(&r, 150, 3);
+    rig_line(&r, 40, 3);
+    rig_tick(&r);
+    CHECK(r.st.explore.homes == 2 && r.st.explore.flips == 1u);
+    CHECK(r.st.explore.side == FFR_SIDE_LEFT);
+    CHECK(ffr_explore_searched_round(&r.st) == 1);
+    r.st.flags |= FFR_FLAG_EXTINGUISHED;
+    CHECK(ffr_explore_searched_round(&r.st) == 0);
+}
+
 SUITE(explore,
       TEST_REF(the_home_circle_is_two_lines_a_chord_apart),
       TEST_REF(turn_targets_are_square_to_the_walls),
@@ -424,4 +453,5 @@ SUITE(explore,
       TEST_REF(the_follow_holds_the_hallway_heading_within_ten_degrees),
       TEST_REF(a_wall_end_behind_where_the_leg_began_is_the_door_just_left),
       TEST_REF(a_straight_leg_is_trued_up_by_the_walls_beside),
-      TEST_REF(every_straight_leg_of_the_explorer_is_trued_up_by_the_walls_beside));
+      TEST_REF(every_straight_leg_of_the_explorer_is_trued_up_by_the_walls_beside),
+      TEST_REF(a_loop_with_its_rooms_searched_and_no_flame_makes_the_next_rooms_searched_harder));
