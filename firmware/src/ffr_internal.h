@@ -283,8 +283,9 @@ float ffr_obst_detour(ffr_obstacles_t *o, const ffr_config_t *cfg, const ffr_odo
  * approach (begin: its first), the position is kept (o->via_*, three at
  * most) where the heading has turned 15 degrees since the last kept. */
 void ffr_obst_trail(ffr_obstacles_t *o, const ffr_odometry_t *odo, int begin);
-/* The position kept as the trail's next point now (room.c: the last room's third scan point). */
-void ffr_obst_keep_point(ffr_obstacles_t *o, const ffr_odometry_t *odo);
+/* The trail begins anew here, this position its first point (room.c: the
+ * third scan point, which the way back runs through). */
+void ffr_obst_trail_from(ffr_obstacles_t *o, const ffr_odometry_t *odo);
 /* The nearest marked cell's centre from (x, y), mm; radius_mm if none nearer. */
 float ffr_obst_nearest_mm(const ffr_obstacles_t *o, float x_mm, float y_mm, float radius_mm);
 

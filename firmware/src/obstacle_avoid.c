@@ -113,7 +113,11 @@ static void keep_point(ffr_obstacles_t *o, const ffr_odometry_t *odo)
     o->trail_rad = odo->heading_rad;
 }
 
-void ffr_obst_keep_point(ffr_obstacles_t *o, const ffr_odometry_t *odo) { keep_point(o, odo); }
+void ffr_obst_trail_from(ffr_obstacles_t *o, const ffr_odometry_t *odo)
+{
+    o->n_via = 0u;
+    keep_point(o, odo);
+}
 
 void ffr_obst_trail(ffr_obstacles_t *o, const ffr_odometry_t *odo, int begin)
 {

@@ -823,6 +823,15 @@ static uint8_t on_leave_out(ffr_state_t *st, room_tick_t *t)
     return RP_STAY;
 }
 
+/* How far the nearest thing the rangers saw must be from a scan point for
+ * the scan's turn in place there: the body's corner radius and
+ * DEEPER_CLEAR_MARGIN_MM (the second and the third scan points) */
+static float scan_turn_room(const ffr_config_t *cfg)
+{
+    return ffr_sqrtf(cfg->body_front_mm * cfg->body_front_mm + cfg->body_half_width_mm * cfg->body_half_width_mm)
+           + DEEPER_CLEAR_MARGIN_MM;
+}
+
 /* The scan from the door found no flame, but one was seen driving in (a
  * piece of furniture hides it from the scan point): drive on along the entry
  * heading, up to DEEPER_MM, and scan again there. It stops sooner at a line
@@ -833,8 +842,7 @@ static uint8_t on_deeper(ffr_state_t *st, room_tick_t *t)
 {
     const ffr_config_t *cfg = &st->cfg;
     ffr_room_state_t *r = &st->room;
-    float need = ffr_sqrtf(cfg->body_front_mm * cfg->body_front_mm + cfg->body_half_width_mm * cfg->body_half_width_mm)
-                 + DEEPER_CLEAR_MARGIN_MM;
+    float need = scan_turn_room(cfg);
     float heading = closest(st->odo.heading_rad, r->entry_heading_rad);
     float ax = st->odo.x_mm + 2.0f * AVOID_STEP_AHEAD_MM * ffr_cosf(heading);
     float ay = st->odo.y_mm + 2.0f * AVOID_STEP_AHEAD_MM * ffr_sinf(heading);
@@ -906,8 +914,7 @@ static uint8_t on_aside(ffr_state_t *st, room_tick_t *t)
 {
     const ffr_config_t *cfg = &st->cfg;
     ffr_room_state_t *r = &st->room;
-    float need = ffr_sqrtf(cfg->body_front_mm * cfg->body_front_mm + cfg->body_half_width_mm * cfg->body_half_width_mm)
-                 + DEEPER_CLEAR_MARGIN_MM;
+    float need = scan_turn_room(cfg);
     float most = r->best_front_mm;
     float len = most < ASIDE_MM ? most : ASIDE_MM;
     int clear;
@@ -916,8 +923,7 @@ static uint8_t on_aside(ffr_state_t *st, room_tick_t *t)
     if ((t->moved >= len && clear) || t->moved >= most || st->lines.edge
         || ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm) {
         ffr_stop(st);
-        r->obst.n_via = 0u;
-        ffr_obst_keep_point(&r->obst, &st->odo);
+        ffr_obst_trail_from(&r->obst, &st->odo);
         return clear ? RP_SCAN : RP_BACK_TURN;
     }
     ffr_drive_heading(st, r->best_heading_rad,

@@ -60,6 +60,14 @@ static void started_in_a_hallway(rig_t *r, const ffr_config_t *cfg)
     }
 }
 
+/* the home circle's two lines, a chord apart, after `before` ticks on the floor */
+static void cross_home(rig_t *r, int before)
+{
+    rig_line(r, before, 3);
+    rig_line(r, 40, 3);
+    rig_tick(r);
+}
+
 TEST(the_mode_switch_is_off_by_default)
 {
     ffr_config_t cfg;
@@ -88,9 +96,7 @@ TEST(in_a_hallway_it_follows_passes_home_and_stops_there_with_the_flame_out)
 
     /* the home circle crossed before the flame is out: counted, the walk goes
      * on (no room searched yet: the same wall) */
-    rig_line(&r, 5, 3);
-    rig_line(&r, 40, 3);
-    rig_tick(&r);
+    cross_home(&r, 5);
     CHECK(r.st.explore.homes == 1);
     CHECK(r.out.state == FFR_ST_FOLLOW);
     CHECK(r.st.explore.side == FFR_SIDE_RIGHT);
@@ -426,15 +432,11 @@ TEST(a_loop_with_its_rooms_searched_and_no_flame_makes_the_next_rooms_searched_h
     started_in_a_hallway(&r, &cfg);
     CHECK(r.st.explore.flips == 0u);
     CHECK(ffr_explore_searched_round(&r.st) == 0);
-    rig_line(&r, 5, 3);
-    rig_line(&r, 40, 3); /* home, no room searched yet: the same wall */
-    rig_tick(&r);
+    cross_home(&r, 5); /* no room searched yet: the same wall */
     CHECK(r.st.explore.homes == 1 && r.st.explore.flips == 0u);
     CHECK(ffr_explore_searched_round(&r.st) == 0);
     r.st.rooms_searched = 2u; /* as the room task leaves it, two rooms on the loop */
-    rig_line(&r, 150, 3);
-    rig_line(&r, 40, 3);
-    rig_tick(&r);
+    cross_home(&r, 150);
     CHECK(r.st.explore.homes == 2 && r.st.explore.flips == 1u);
     CHECK(r.st.explore.side == FFR_SIDE_LEFT);
     CHECK(ffr_explore_searched_round(&r.st) == 1);

@@ -79,6 +79,13 @@ static int run_while(rig_t *r, uint8_t state, int max_ticks)
     return r->out.state != state;
 }
 
+/* A one-room route (its room the last): the first scan finds no flame, the
+ * robot drives DEEPER and its second scan begins */
+static int into_the_second_scan(rig_t *r, const ffr_config_t *cfg)
+{
+    return into_the_scan(r, cfg) && run_while(r, FFR_ST_SCAN, 2000) && rig_run_until_state(r, FFR_ST_SCAN, 1000);
+}
+
 TEST(no_doorway_line_on_the_way_in_fails_no_line)
 {
     /* over the class of limits: each fails once it has driven that far */
@@ -108,7 +115,7 @@ TEST(no_doorway_line_on_the_way_out_fails_no_line)
     rig_t r;
     float out_from;
     ffr_config_default(&cfg);
-    rig_room_route(&cfg, 0);
+    two_room_route(&cfg); /* not the last room: no second scan */
     CHECK(into_the_scan(&r, &cfg));
     /* a full turn, no flame: it turns to the door and drives out ... */
     CHECK(rig_run_until_state(&r, FFR_ST_EXIT, 2000));
@@ -685,10 +692,8 @@ TEST(the_last_room_with_no_way_aside_is_left_after_the_second_scan)
     float h0, x, y;
     ffr_config_default(&cfg);
     rig_room_route(&cfg, 0);
-    CHECK(into_the_scan(&r, &cfg));
+    CHECK(into_the_second_scan(&r, &cfg));
     h0 = r.st.room.entry_heading_rad;
-    CHECK(run_while(&r, FFR_ST_SCAN, 2000));
-    CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 1000));
     for (k = -2; k <= 2; ++k) {
         float dir = h0 + (float)k * 45.0f * FFR_DEG;
         if (k != 0) {
@@ -714,9 +719,7 @@ TEST(a_flame_seen_from_the_aside_point_is_approached)
     int i;
     ffr_config_default(&cfg);
     rig_room_route(&cfg, 0);
-    CHECK(into_the_scan(&r, &cfg));
-    CHECK(run_while(&r, FFR_ST_SCAN, 2000));
-    CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 1000));
+    CHECK(into_the_second_scan(&r, &cfg));
     CHECK(run_while(&r, FFR_ST_SCAN, 2000));
     CHECK(r.st.room.scans == 3u);
     CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 1000));
