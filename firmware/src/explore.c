@@ -328,6 +328,43 @@ static void probe(ffr_state_t *st, const ffr_inputs_t *in)
     ffr_drive_held(st, cfg->room_speed_mm_s);
 }
 
+/* chosen: a wall this near both of one side's corner rangers (45 degrees
+ * off the heading, 70 mm to the side of the middle) stands within 0.07 +
+ * 0.155 x 0.707 = 0.18 m of the axle, the front corner's turning circle
+ * (156 mm for the default body) and a margin; a hallway's walls seen by a
+ * robot in its middle read ~210 mm */
+#ifndef EX_SHUT_MM
+#define EX_SHUT_MM 155.0f
+#endif
+
+/* Both rangers on one side see a wall nearer than EX_SHUT_MM: a wall
+ * alongside, close. */
+static int side_shut(const ffr_state_t *st, uint8_t side)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    int f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
+    int r = side == FFR_SIDE_LEFT ? FFR_IR_LR : FFR_IR_RR;
+    return ffr_ir_valid(cfg, st->ir_mm[f]) && st->ir_mm[f] < EX_SHUT_MM && ffr_ir_valid(cfg, st->ir_mm[r])
+           && st->ir_mm[r] < EX_SHUT_MM;
+}
+
+/* Out of a door the walk goes on toward the followed side. A door in a
+ * hallway's end (the 2004 map's rooms 2 and 3: the west hallway's and the
+ * corridor's dead ends) leaves the robot with that end wall along the
+ * followed side, often nearer than a hallway's half when the exit came out
+ * off the door's middle: the quarter turn toward it sweeps that side's front
+ * corner (156 mm from the axle) through it, and faces it (the wall case
+ * would turn back at once). Turning away sweeps the rear corner (141 mm)
+ * instead, and is the way a wall follower goes on after the dead end anyway. */
+int ffr_explore_way_out(const ffr_state_t *st)
+{
+    const ffr_explore_t *e = &st->explore;
+    if (side_shut(st, e->side) && !side_shut(st, (uint8_t)(1u - e->side))) {
+        return -toward(e);
+    }
+    return toward(e);
+}
+
 static void explore_step(ffr_state_t *st, const ffr_inputs_t *in)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -338,6 +375,24 @@ static void explore_step(ffr_state_t *st, const ffr_inputs_t *in)
         follow(st);
         return;
     case EX_TURN:
+        if (st->lines.edge && e->edge_mm != EX_NO_EDGE && st->odo.dist_mm - e->edge_mm <= FFR_HOME_CHORD_MM) {
+            /* The home circle's far side met by the line sensor's arc while
+             * turning in place inside it: home at a junction (the 2001
+             * plan's, at the middle hallway's mouth), the turn into the
+             * crossing hallway begun before the far side was crossed, and
+             * the sensor on the ring when the turn ends (no edge after it).
+             * The circle, as on a straight chord: with the flame out the
+             * robot stops there; before, the walls change and the turn goes
+             * on (before this, the walk went round the island room's loop
+             * until the time ran out: docs/robustness.md, "Options
+             * together"). */
+            (void)line_edge(st);
+            if (e->phase == EX_HOME) {
+                return;
+            }
+            e->phase = EX_TURN;
+            st->state = FFR_ST_TURN;
+        }
         ffr_turn_toward(st, e->target_rad);
         if (ffr_turn_done(cfg, &st->odo, e->target_rad)) {
             ffr_turn_finish(st, e->target_rad);
@@ -358,8 +413,9 @@ static void explore_step(ffr_state_t *st, const ffr_inputs_t *in)
                 st->returning = 1;
             }
             e->edge_mm = EX_NO_EDGE;
-            /* facing out of the door: on the way the walk went before it */
-            turn(st, toward(e), EX_FOLLOW);
+            /* facing out of the door: on the way the walk went before it
+             * (away from a hallway's end beside the door) */
+            turn(st, ffr_explore_way_out(st), EX_FOLLOW);
             break;
         case FFR_ROOM_BUSY:
         default:

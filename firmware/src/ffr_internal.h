@@ -467,6 +467,11 @@ int ffr_explore_is_circle(float chord_mm, float line_sensor_x_mm, float *to_midd
 /* The multiple of 90 degrees nearest to rad (the turns' targets in a frame
  * square to the walls). */
 float ffr_explore_square(float rad);
+/* Out of a door: the quarter turn's degrees on along the hallway, toward
+ * the followed side (e->side) unless a wall stands along that side within
+ * the front corner's turning circle and not along the other (a door in a
+ * hallway's end, beside its corner): then away from it. */
+int ffr_explore_way_out(const ffr_state_t *st);
 
 /* mission.c */
 void ffr_fail(ffr_state_t *st, uint8_t code);

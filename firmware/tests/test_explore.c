@@ -444,6 +444,100 @@ TEST(a_loop_with_its_rooms_searched_and_no_flame_makes_the_next_rooms_searched_h
     CHECK(ffr_explore_searched_round(&r.st) == 0);
 }
 
+/* Leaving a room (room.c's last phase, on its next tick: the wall across
+ * the hallway ahead), the right side's two corner rangers reading right_mm */
+static void leaving_a_room(rig_t *r, const ffr_config_t *cfg, float right_mm, float left_mm)
+{
+    started_in_a_hallway(r, cfg);
+    ffr_room_begin(&r->st, 1u, r->st.route.heading_ref_rad);
+    r->st.explore.phase = 4u; /* EX_ROOM (explore.c) */
+    r->st.room.phase = 11u;   /* RP_LEAVE_OUT (room.c): done once the wall ahead is within front_stop_mm */
+    r->in.ir_mv[FFR_IR_CF] = rig_mv_for_mm(cfg, 110.0f);
+    r->in.ir_mv[FFR_IR_RF] = rig_mv_for_mm(cfg, right_mm);
+    r->in.ir_mv[FFR_IR_RR] = rig_mv_for_mm(cfg, right_mm);
+    r->in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(cfg, left_mm);
+    r->in.ir_mv[FFR_IR_LR] = rig_mv_for_mm(cfg, left_mm);
+}
+
+TEST(out_of_a_door_beside_a_hallways_end_the_walk_turns_away_from_it)
+{
+    /* out of a door the walk turns toward the followed side (right); with
+     * that side's two corner rangers on a wall within the front corner's
+     * turning circle (a door in a hallway's end) it turns left instead */
+    static const struct {
+        float right_mm, left_mm;
+        float deg;
+    } cases[] = {
+        {226.0f, 226.0f, -90.0f}, /* a hallway's walls from its middle: toward the followed side */
+        {120.0f, 226.0f, 90.0f},  /* the end wall along the right: away from it */
+        {120.0f, 120.0f, -90.0f}, /* walls close both sides: as before */
+        {170.0f, 226.0f, -90.0f}, /* beyond the turning circle: as before */
+    };
+    ffr_config_t cfg;
+    rig_t r;
+    unsigned i;
+    ffr_config_default(&cfg);
+    cfg.start_area = FFR_START_HALLWAY;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        leaving_a_room(&r, &cfg, cases[i].right_mm, cases[i].left_mm);
+        CHECK(r.st.explore.side == FFR_SIDE_RIGHT);
+        CHECK(rig_run_until_state(&r, FFR_ST_TURN, 20));
+        CHECK(r.st.explore.phase == 2u); /* EX_TURN, then the follow */
+        CHECK_NEAR(r.st.explore.target_rad - r.st.route.heading_ref_rad, cases[i].deg * FFR_DEG, 1e-5);
+        CHECK(ffr_explore_way_out(&r.st) == (int)cases[i].deg);
+    }
+}
+
+/* In a hallway, the home circle's near side crossed, then a wall ahead
+ * (the follow's turn into the crossing hallway, inside the circle), and the
+ * circle's far side met while turning */
+static void turning_in_the_home_circle(rig_t *r, const ffr_config_t *cfg)
+{
+    int i;
+    started_in_a_hallway(r, cfg);
+    rig_line(r, 5, 3);
+    CHECK(r->st.explore.edge_mm > -1.0e8f); /* the near side: a line to pair */
+    for (i = 0; i < 40; ++i) {
+        rig_tick(r); /* on past the line counter's hold-off */
+    }
+    r->in.ir_mv[FFR_IR_CF] = rig_mv_for_mm(cfg, 110.0f);
+    r->in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(cfg, 600.0f); /* open on the left: a corner */
+    r->in.ir_mv[FFR_IR_LR] = rig_mv_for_mm(cfg, 600.0f);
+    CHECK(rig_run_until_state(r, FFR_ST_TURN, 40));
+    CHECK(r->st.odo.dist_mm - r->st.explore.edge_mm < FFR_HOME_CHORD_MM);
+    r->in.ir_mv[FFR_IR_CF] = rig_mv_for_mm(cfg, 600.0f);
+    CHECK(rig_run_until_state(r, FFR_ST_TURN, 3)); /* turning, not yet at the target */
+}
+
+TEST(the_home_circles_far_side_met_while_turning_in_it_is_home)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    float target;
+    ffr_config_default(&cfg);
+    cfg.start_area = FFR_START_HALLWAY;
+
+    /* before the flame is out, a room searched on the loop: the walls change,
+     * the turn goes on to its target */
+    turning_in_the_home_circle(&r, &cfg);
+    CHECK(r.st.explore.homes == 0u && r.st.explore.side == FFR_SIDE_RIGHT);
+    r.st.rooms_searched = 1u;
+    target = r.st.explore.target_rad;
+    rig_line(&r, 0, 3);
+    CHECK(r.st.explore.homes == 1u);
+    CHECK(r.st.explore.flips == 1u && r.st.explore.side == FFR_SIDE_LEFT);
+    CHECK(r.out.state == FFR_ST_TURN && r.st.explore.phase == 2u); /* EX_TURN */
+    CHECK_NEAR(r.st.explore.target_rad, target, 0.0);
+
+    /* with the flame out: home, the robot stops in the circle */
+    turning_in_the_home_circle(&r, &cfg);
+    r.st.flags |= FFR_FLAG_EXTINGUISHED;
+    rig_line(&r, 0, 3);
+    CHECK(r.st.explore.homes == 1u);
+    CHECK(rig_run_until_state(&r, FFR_ST_DONE, 20));
+    CHECK(r.out.flags & FFR_FLAG_DONE);
+}
+
 SUITE(explore,
       TEST_REF(the_home_circle_is_two_lines_a_chord_apart),
       TEST_REF(turn_targets_are_square_to_the_walls),
@@ -456,4 +550,6 @@ SUITE(explore,
       TEST_REF(a_wall_end_behind_where_the_leg_began_is_the_door_just_left),
       TEST_REF(a_straight_leg_is_trued_up_by_the_walls_beside),
       TEST_REF(every_straight_leg_of_the_explorer_is_trued_up_by_the_walls_beside),
-      TEST_REF(a_loop_with_its_rooms_searched_and_no_flame_makes_the_next_rooms_searched_harder));
+      TEST_REF(a_loop_with_its_rooms_searched_and_no_flame_makes_the_next_rooms_searched_harder),
+      TEST_REF(out_of_a_door_beside_a_hallways_end_the_walk_turns_away_from_it),
+      TEST_REF(the_home_circles_far_side_met_while_turning_in_it_is_home));

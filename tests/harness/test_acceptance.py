@@ -81,12 +81,24 @@ def test_held_out_rows_run_only_when_asked_and_have_no_goal() -> None:
     default = acc._rows(None)
     assert not set(default) & set(acc.HELD_OUT)
     assert acc._rows("held-out") == list(acc.HELD_OUT)
-    assert acc._rows("all") == [*default, *acc.HELD_OUT]
+    assert acc._rows("combined") == list(acc.COMBINED)
+    assert acc._rows("all") == [*default, *acc.HELD_OUT, *acc.COMBINED]
     keys = [r.key for r in acc._rows("all")]
     assert len(keys) == len(set(keys))
-    assert all(r.goal_pct is None for r in acc.HELD_OUT)
+    assert all(r.goal_pct is None for r in (*acc.HELD_OUT, *acc.COMBINED))
     _, cell = acc.measure(acc.HELD_OUT[0], None, None, lambda argv: _sweep_json(2000, 1))
     assert cell.met is None
+
+
+def test_a_combined_row_runs_options_no_goal_row_runs_together() -> None:
+    # each combined row's options (flags with their values) are in no single goal row
+    def opts(argv: tuple[str, ...]) -> set[tuple[str, str]]:
+        return {(a, argv[i + 1]) for i, a in enumerate(argv[:-1])
+                if a.startswith("--") and a not in ("--seeds",)}
+
+    for c in acc.COMBINED:
+        assert c.argv[0] == "sweep" and "--seeds" in c.argv
+        assert not any(opts(c.argv) <= opts(g.argv) for g in acc.ROWS), c.key
 
 
 @pytest.mark.parametrize("goal, held", [("realistic", "realistic-held"), ("jitter", "jitter-held"),
