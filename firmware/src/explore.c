@@ -171,9 +171,13 @@ static int line_edge(ffr_state_t *st)
             e->flips = (uint8_t)(e->flips + 1u);
         }
         e->side = (uint8_t)(1u - e->side);
-        e->phase = EX_FOLLOW;
-        e->backing = 0;
-        st->state = FFR_ST_FOLLOW;
+        if (e->phase != EX_TURN) {
+            /* a wrap or a probe ends: the follow goes on by the new wall
+             * (a turn in the circle goes on to its target first) */
+            e->phase = EX_FOLLOW;
+            e->backing = 0;
+            st->state = FFR_ST_FOLLOW;
+        }
     }
     return 1;
 }
@@ -390,8 +394,6 @@ static void explore_step(ffr_state_t *st, const ffr_inputs_t *in)
             if (e->phase == EX_HOME) {
                 return;
             }
-            e->phase = EX_TURN;
-            st->state = FFR_ST_TURN;
         }
         ffr_turn_toward(st, e->target_rad);
         if (ffr_turn_done(cfg, &st->odo, e->target_rad)) {

@@ -60,6 +60,14 @@ static void started_in_a_hallway(rig_t *r, const ffr_config_t *cfg)
     }
 }
 
+/* The default configuration in the arbitrary start mode, started in a hallway. */
+static void explorer_started(rig_t *r, ffr_config_t *cfg)
+{
+    ffr_config_default(cfg);
+    cfg->start_area = FFR_START_HALLWAY;
+    started_in_a_hallway(r, cfg);
+}
+
 /* the home circle's two lines, a chord apart, after `before` ticks on the floor */
 static void cross_home(rig_t *r, int before)
 {
@@ -86,9 +94,7 @@ TEST(in_a_hallway_it_follows_passes_home_and_stops_there_with_the_flame_out)
     ffr_config_t cfg;
     rig_t r;
     int i;
-    ffr_config_default(&cfg);
-    cfg.start_area = FFR_START_HALLWAY;
-    started_in_a_hallway(&r, &cfg);
+    explorer_started(&r, &cfg);
     CHECK(r.out.state == FFR_ST_FOLLOW);
     CHECK(r.out.step == 0); /* the explorer's phase: follow */
     CHECK(r.st.explore.side == FFR_SIDE_RIGHT);
@@ -124,9 +130,7 @@ TEST(a_lone_line_on_the_way_home_turns_the_robot_round)
 {
     ffr_config_t cfg;
     rig_t r;
-    ffr_config_default(&cfg);
-    cfg.start_area = FFR_START_HALLWAY;
-    started_in_a_hallway(&r, &cfg);
+    explorer_started(&r, &cfg);
     r.st.flags |= FFR_FLAG_EXTINGUISHED;
     rig_line(&r, 5, 3);
     /* a doorway's line crossed straight: past a circle's chord with no second
@@ -148,9 +152,7 @@ TEST(a_whole_opening_whose_middle_is_passed_is_backed_to_then_turned_into)
     rig_t r;
     float d, x0;
     int i;
-    ffr_config_default(&cfg);
-    cfg.start_area = FFR_START_HALLWAY;
-    started_in_a_hallway(&r, &cfg);
+    explorer_started(&r, &cfg);
     /* an opening on the followed side seen whole (open, then its far edge
      * 180 mm ahead): its middle, half a hallway before that edge, is 50 mm
      * behind the robot; the leg began 600 mm back (not the door just left) */
@@ -191,9 +193,7 @@ TEST(a_probe_that_finds_a_hallway_keeps_where_the_leg_began)
     ffr_config_t cfg;
     rig_t r;
     float d, start;
-    ffr_config_default(&cfg);
-    cfg.start_area = FFR_START_HALLWAY;
-    started_in_a_hallway(&r, &cfg);
+    explorer_started(&r, &cfg);
     /* a probe 301 mm on with no line: a hallway, the follow goes on */
     d = r.st.odo.dist_mm;
     start = d - 301.0f;
@@ -235,9 +235,7 @@ static float follow_yaw_with_heading_off(float off_deg)
 {
     ffr_config_t cfg;
     rig_t r;
-    ffr_config_default(&cfg);
-    cfg.start_area = FFR_START_HALLWAY;
-    started_in_a_hallway(&r, &cfg);
+    explorer_started(&r, &cfg);
     r.in.ir_mv[FFR_IR_LF] = rig_mv_for_mm(&cfg, 330.0f);
     r.in.ir_mv[FFR_IR_LR] = rig_mv_for_mm(&cfg, 330.0f);
     r.in.ir_mv[FFR_IR_RF] = 0;
@@ -372,9 +370,7 @@ static float leg_error_after(uint8_t leg, float err, float mm)
     rig_walls_t w = {230.0f, -230.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
     float d0;
     int i, ticks = 0;
-    ffr_config_default(&cfg);
-    cfg.start_area = FFR_START_HALLWAY;
-    started_in_a_hallway(&r, &cfg);
+    explorer_started(&r, &cfg);
     ffr_odometry_reset(&truth);
     ffr_odometry_update(&truth, &cfg, r.in.enc, 0.01f); /* its zero: the encoders as they are */
     truth.heading_rad = r.st.odo.heading_rad - err;
@@ -427,9 +423,7 @@ TEST(a_loop_with_its_rooms_searched_and_no_flame_makes_the_next_rooms_searched_h
      * out, no more */
     ffr_config_t cfg;
     rig_t r;
-    ffr_config_default(&cfg);
-    cfg.start_area = FFR_START_HALLWAY;
-    started_in_a_hallway(&r, &cfg);
+    explorer_started(&r, &cfg);
     CHECK(r.st.explore.flips == 0u);
     CHECK(ffr_explore_searched_round(&r.st) == 0);
     cross_home(&r, 5); /* no room searched yet: the same wall */
