@@ -165,6 +165,13 @@
  * past the rear corner's 41 mm swing (30, 45 and 70 mm measured: 30 and 45
  * alike, docs/robustness.md "A fold move watches its leading end") */
 #define CHORD_STEP_MM 45.0f
+/* The arbitrary start (a hallway, any heading): a straight step forward
+ * before the first sweep, when a rear ranger reads nothing within
+ * HALL_OPEN_MM (hallway_step). Chosen: 100 mm and 750 mm (60, 100 and 150
+ * mm, 600 and 750 mm and no condition measured: docs/robustness.md, "A step
+ * before the sweep from a hallway start") */
+#define HALL_STEP_MM 100.0f
+#define HALL_OPEN_MM 750.0f
 
 /* a shift to stand at wall_target_mm at most this far across the route's
  * first direction (and at most SHIFT_TOL_MM along it) is not made; 0 (the
@@ -1839,6 +1846,40 @@ static uint8_t lead_grew(const ffr_state_t *st)
     return m;
 }
 
+/* Placed in a hallway, the body may stand beside a wall's end: a door's
+ * jamb or a hallway's mouth a centimetre or two off its side or behind it,
+ * the wall running away between the rangers' beams. No ranger sees it
+ * (within the turning circle they read folded back, if at all), and the
+ * sweep's turn swings a corner into it within 15-35 degrees. A straight move
+ * keeps the body in its own band, and 100 mm forward takes a point beside
+ * the axle or behind it out of the turning circle. The step has its own
+ * blind spot, a wall's end pointing at the front face off the centre
+ * ranger's line; taken always it lost about as many starts as it saved
+ * (docs/robustness.md). So only where such an end is likely: a rear ranger
+ * reading no wall within HALL_OPEN_MM (open floor behind that side, the
+ * body at a mouth or a door), and on the first look only (nothing moved
+ * yet), the floor ahead as the rangers see it free. 1 when the step starts. */
+static int hallway_step(ffr_state_t *st)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    uint8_t rear = rear_beams(st);
+    int i, open = 0;
+    if (cfg->start_area != FFR_START_HALLWAY || st->odo.dist_mm > 0.0f || st->orient.escapes != 0u) {
+        return 0;
+    }
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if ((rear >> i) & 1 && (!ffr_ir_valid(cfg, st->ir_mm[i]) || st->ir_mm[i] >= HALL_OPEN_MM)) {
+            open = 1;
+        }
+    }
+    if (!open || end_room(st, 0, BAND_MARGIN_MM, 0u) <= cfg->body_front_mm + ESCAPE_FREE_MM + HALL_STEP_MM ||
+        corner_room(st) < CORNER_FREE_MM + HALL_STEP_MM) {
+        return 0;
+    }
+    straight_leg(st, HALL_STEP_MM, 0u, 0u);
+    return 1;
+}
+
 int ffr_orient_step(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -1903,7 +1944,8 @@ int ffr_orient_step(ffr_state_t *st)
         uint8_t suspects = FFR_HOME_FOLD_MM > 0.0f || o->escapes > 0u
                                ? 0u
                                : ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_FOLD_MAX_MM);
-        if (rear_fold_move(st, suspects) || front_fold_move(st, suspects) || !clear_step(st)) {
+        if (rear_fold_move(st, suspects) || front_fold_move(st, suspects) || !clear_step(st) ||
+            hallway_step(st)) {
             return 0;
         }
         /* room to turn: the sweep starts from here */

@@ -2242,6 +2242,53 @@ TEST(a_line_across_a_corner_first_steps_forward_when_the_floor_allows)
     }
 }
 
+/* The arbitrary start: placed in a hallway, a wall's end may stand a
+ * centimetre beside the body where no ranger sees it (the fresh +-2.5 cm
+ * hallway row's start seed 298: a jamb 16 mm off the left side at the axle,
+ * its wall running back between the left rangers' beams; the sweep's turn
+ * met it at 0.2 s). With a rear ranger reading no wall (open floor behind
+ * that side), the first look steps straight forward 100 mm before the
+ * sweep. Not with walls read behind on both sides, nor from the home
+ * circle, nor with the floor ahead shut, nor once the robot has moved. */
+enum { STEP_OPEN_BEHIND, STEP_WALLS_BEHIND, STEP_FROM_HOME, STEP_FRONT_SHUT, STEP_MOVED };
+TEST(from_a_hallway_open_behind_the_first_look_steps_forward_before_the_sweep)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    int kind;
+    ffr_config_default(&cfg);
+    for (kind = STEP_OPEN_BEHIND; kind <= STEP_MOVED; ++kind) {
+        const ffr_home_orient_t *o = &r.st.orient;
+        float ir[FFR_IR_COUNT];
+        cfg.start_area = kind == STEP_FROM_HOME ? FFR_START_HOME : FFR_START_HALLWAY;
+        rig_init(&r, &cfg);
+        rig_no_walls(&cfg, ir);
+        /* start seed 298's first readings (CF, LR, RR: no wall) */
+        ir[FFR_IR_LF] = 436.0f;
+        ir[FFR_IR_RF] = 266.0f;
+        if (kind == STEP_WALLS_BEHIND) {
+            ir[FFR_IR_LR] = 423.0f;
+            ir[FFR_IR_RR] = 495.0f;
+        } else if (kind == STEP_FRONT_SHUT) {
+            ir[FFR_IR_CF] = 170.0f; /* 270 mm ahead of the axle, above the fold-back span: no room for the step */
+        }
+        look_from(&r, &cfg, ir);
+        if (kind == STEP_MOVED) {
+            r.st.odo.dist_mm = 5.0f;
+        }
+        CHECK(ffr_orient_step(&r.st) == 0);
+        CHECK(o->escapes == 0u);
+        if (kind == STEP_OPEN_BEHIND) {
+            CHECK(o->phase == 8u); /* PH_ESCAPE */
+            CHECK(o->leg == 0u && o->reverse == 0u && o->target_rad == 0.0f);
+            CHECK(ffr_absf(o->goal_mm - r.st.odo.dist_mm - 100.0f) < 0.5f);
+        } else {
+            CHECK(o->phase == 0u); /* PH_SWEEP: the turn begins here */
+            CHECK(r.st.cmd_v_mm_s == 0.0f && r.st.cmd_w_rad_s != 0.0f);
+        }
+    }
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -2280,6 +2327,7 @@ SUITE(home_orient,
       TEST_REF(a_fold_move_forward_turns_back_when_its_front_ranger_reads_longer),
       TEST_REF(a_fold_move_turned_back_goes_as_far_as_it_came_and_tells_fold_back),
       TEST_REF(a_line_across_a_corner_first_steps_forward_when_the_floor_allows),
+      TEST_REF(from_a_hallway_open_behind_the_first_look_steps_forward_before_the_sweep),
       TEST_REF(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind),
       TEST_REF(a_move_back_stops_when_a_rear_ranger_passes_its_peak),
       TEST_REF(a_shift_backward_stops_where_a_rear_ranger_reaches_its_bottom));
