@@ -1862,11 +1862,12 @@ static uint8_t lead_grew(const ffr_state_t *st)
 static int hallway_step(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
-    uint8_t rear = rear_beams(st);
+    uint8_t rear;
     int i, open = 0;
     if (cfg->start_area != FFR_START_HALLWAY || st->odo.dist_mm > 0.0f || st->orient.escapes != 0u) {
-        return 0;
+        return 0; /* before anything else: the first look's tick is among the heaviest (docs/pil.md) */
     }
+    rear = rear_beams(st);
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         if ((rear >> i) & 1 && (!ffr_ir_valid(cfg, st->ir_mm[i]) || st->ir_mm[i] >= HALL_OPEN_MM)) {
             open = 1;
