@@ -887,6 +887,7 @@ void ffr_orient_begin(ffr_state_t *st)
  * the front is free, else backward). 1 when there is room (or the moves are
  * spent): the sweep begins here. */
 static float end_room(const ffr_state_t *st, int backward, float band, uint8_t skip);
+static float straight_room(const ffr_state_t *st, int backward);
 static uint8_t beside_skip(const ffr_state_t *st, float side);
 static int line_reading(const ffr_config_t *cfg, float d);
 
@@ -1005,7 +1006,7 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
              * wall behind or diagonally behind, and keeps the body in its
              * own band. Then the look again decides */
             if (o->escapes == 1u &&
-                end_room(st, 0, BAND_MARGIN_MM, 0u) > st->cfg.body_front_mm + ESCAPE_FREE_MM + CHORD_STEP_MM) {
+                straight_room(st, 0) > CHORD_STEP_MM) {
                 straight_leg(st, CHORD_STEP_MM, 0u, 0u);
                 return;
             }
@@ -1181,8 +1182,7 @@ static void fold_move(ffr_state_t *st, uint8_t away, float len, uint8_t backward
  * drives toward has room for it (1 when it starts) */
 static int fold_move_if_room(ffr_state_t *st, uint8_t away, float len, uint8_t backward)
 {
-    if (away == 0u ||
-        end_room(st, backward, BAND_MARGIN_MM, 0u) < st->cfg.body_front_mm + ESCAPE_FREE_MM + len) {
+    if (away == 0u || straight_room(st, backward) < len) {
         return 0;
     }
     fold_move(st, away, len, backward);
@@ -1342,6 +1342,14 @@ static float end_room(const ffr_state_t *st, int backward, float band, uint8_t s
         }
     }
     return room;
+}
+
+/* How long a straight move ahead (backward = 0) or behind may be: the free
+ * floor in the body's path (end_room, BAND_MARGIN_MM) beyond the body's
+ * front and ESCAPE_FREE_MM */
+static float straight_room(const ffr_state_t *st, int backward)
+{
+    return end_room(st, backward, BAND_MARGIN_MM, 0u) - st->cfg.body_front_mm - ESCAPE_FREE_MM;
 }
 
 /* The wall beside that a sideways escape moves away from (side: > 0 left,
@@ -1642,8 +1650,7 @@ void ffr_orient_after_shift(ffr_state_t *st)
         /* a shift backward stopped by a rear ranger at its bottom: no
          * measured line to move off, so a short straight move forward */
         back = 0u;
-        len = ffr_clampf(end_room(st, 0, BAND_MARGIN_MM, 0u) - st->cfg.body_front_mm - ESCAPE_FREE_MM, 0.0f,
-                         SHIFT_BOTTOM_MOVE_MM);
+        len = ffr_clampf(straight_room(st, 0), 0.0f, SHIFT_BOTTOM_MOVE_MM);
     } else {
         return;
     }
@@ -1808,7 +1815,7 @@ static uint8_t rear_passed(ffr_state_t *st)
 static void pass_move(ffr_state_t *st, uint8_t passed)
 {
     ffr_home_orient_t *o = &st->orient;
-    float len = end_room(st, 0, BAND_MARGIN_MM, 0u) - st->cfg.body_front_mm - ESCAPE_FREE_MM;
+    float len = straight_room(st, 0);
     ffr_stop(st);
     if (o->phase == PH_SHIFT_DRIVE) {
         o->after_shift = 1u;
@@ -1873,8 +1880,7 @@ static int hallway_step(ffr_state_t *st)
             open = 1;
         }
     }
-    if (!open || end_room(st, 0, BAND_MARGIN_MM, 0u) <= cfg->body_front_mm + ESCAPE_FREE_MM + HALL_STEP_MM ||
-        corner_room(st) < CORNER_FREE_MM + HALL_STEP_MM) {
+    if (!open || straight_room(st, 0) <= HALL_STEP_MM || corner_room(st) < CORNER_FREE_MM + HALL_STEP_MM) {
         return 0;
     }
     straight_leg(st, HALL_STEP_MM, 0u, 0u);

@@ -23,7 +23,7 @@ from hil_bridge import codec
 from hil_bridge.codec import MsgType
 from hil_bridge.errors import ErrCode
 from hil_bridge.faults import FaultInjector, FaultSpec, flip_bit
-from tests.bridge.conftest import alive, short_scenario
+from tests.bridge.conftest import TEST_WATCHDOG_MS, alive, short_scenario
 
 pytestmark = pytest.mark.usefixtures("no_stray_boards")
 
@@ -200,12 +200,6 @@ def test_the_board_exits_when_its_harness_is_killed() -> None:
     while alive(pid) and time.monotonic() < deadline:
         time.sleep(0.02)
     assert not alive(pid), "the board outlived its harness"
-
-
-# The watchdog tests ask 1 s: a host stalled by a busy machine must not trip it during a mission
-# (with 100 ms the CAN test below failed once with one busy loop per core; a stall of 0.5 s is seen
-# at a load of 8 on 2 cores, hil_bridge/options.py); the report is then waited for, not slept for.
-TEST_WATCHDOG_MS = 1000
 
 
 def test_serial_board_watchdog_stops_the_motors_and_says_so() -> None:

@@ -27,6 +27,7 @@ from harness.scenario import Timing, make_scenario
 from hil_bridge import codec
 from hil_bridge.codec import MsgType
 from hil_bridge.errors import ErrCode
+from tests.bridge.conftest import TEST_WATCHDOG_MS
 
 REPO = Path(__file__).resolve().parents[2]
 # every board, and the mps2-an386 over both its transports: its Ethernet (the default) and its UART
@@ -113,12 +114,10 @@ def test_board_watchdog_counts_milliseconds(url: str) -> None:
     scn = make_scenario(room=1)  # the start of a mission, as tests/bridge's short_scenario
     scn.timing.find_limit_s = 2.0
     scn.timing.return_limit_s = 1.0
-    # 1 s, as tests/bridge's watchdog tests: a host stalled by a busy machine must not trip it
-    # during the mission; the report is waited for
-    with open_link(f"qemu:{url}{'&' if '#' in url else '#'}watchdog_ms=1000") as link:
+    with open_link(f"qemu:{url}{'&' if '#' in url else '#'}watchdog_ms={TEST_WATCHDOG_MS}") as link:
         res, trace = run_mission(scn, link)
         assert tuple(trace.actuators[-1, :2]) != (0, 0)  # driving when the inputs stop
-        assert int(link.info["watchdog_ms"]) == 1000  # type: ignore[attr-defined]
+        assert int(link.info["watchdog_ms"]) == TEST_WATCHDOG_MS  # type: ignore[attr-defined]
         time.sleep(0.5)  # QEMU's virtual clock follows the host's while the board sleeps
         report = link._recv_msg(10.0)  # type: ignore[attr-defined]
         assert report is not None
