@@ -84,6 +84,8 @@ def _held(goal_key: str, key: str, what: str, seeds: str) -> Row:
 HELD_OUT: tuple[Row, ...] = (
     _held("realistic", "realistic-held", "realistic profile, 50 held-out robots", "50:100"),
     _held("jitter", "jitter-held", "arena jitter +-2.5 cm, held-out arenas and starts", "50:100"),
+    _held("jitter-stress", "jitter-stress-held", "arena jitter +-5 cm (stress), held-out arenas and starts",
+          "50:150"),
     _held("start", "start-held", "any start in the home circle, 200 held-out starts", "100:300"),
     _held("start", "start-held2", "any start in the home circle, 200 more held-out starts", "300:500"),
     _held("hallway", "hallway-held", "arbitrary start in a hallway, held-out starts", "20:60"),

@@ -114,6 +114,9 @@ void ffr_wall_cal_restart(ffr_wall_cal_t *c); /* a new window; the tilts stay   
 void ffr_wall_cal_update(ffr_wall_cal_t *c, const ffr_wall_t *w, int side, float heading_rad, float dist_mm);
 /* Take the side's learned tilt off a two-ranger wall angle. */
 void ffr_wall_cal_correct(const ffr_wall_cal_t *c, ffr_wall_t *w, int side);
+/* The side rangers' hits (a copy of g) with the pair's tilt split between them. */
+void ffr_wall_cal_split(const ffr_wall_cal_t *c, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT],
+                        ffr_ir_geom_t *g);
 
 /* wall_cases.c (Fig. 9): the six wall cases and the turn each asks for. */
 typedef enum {

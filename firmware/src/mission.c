@@ -120,10 +120,22 @@ void ffr_step(ffr_state_t *st, const ffr_inputs_t *in, ffr_outputs_t *out)
     before = st->odo.dist_mm;
     ffr_odometry_update(&st->odo, cfg, in->enc, dt);
     ffr_lines_update(&st->lines, cfg, in->line, st->odo.dist_mm);
-    ffr_openings_update(&st->open, cfg, &st->ir_geom, st->ir_mm, st->odo.dist_mm, st->odo.dist_mm - before,
-                        ffr_route_open_side(st));
-    ffr_gaps_update(&st->open, cfg, &st->ir_geom, st->ir_mm, st->odo.dist_mm, st->odo.dist_mm - before,
-                    st->odo.heading_rad - st->route.heading_ref_rad);
+    {
+        /* the openings from the hits with each pair's tilt split between
+         * its two parts (a copy: the rest reads the hits as measured); no
+         * copy before a tilt is learned (the orientation's heavy ticks) */
+        const ffr_ir_geom_t *og = &st->ir_geom;
+        ffr_ir_geom_t split;
+        if (st->wall_cal.bias_n[FFR_SIDE_LEFT] != 0u || st->wall_cal.bias_n[FFR_SIDE_RIGHT] != 0u) {
+            split = st->ir_geom;
+            ffr_wall_cal_split(&st->wall_cal, cfg, st->ir_mm, &split);
+            og = &split;
+        }
+        ffr_openings_update(&st->open, cfg, og, st->ir_mm, st->odo.dist_mm, st->odo.dist_mm - before,
+                            ffr_route_open_side(st));
+        ffr_gaps_update(&st->open, cfg, og, st->ir_mm, st->odo.dist_mm, st->odo.dist_mm - before,
+                        st->odo.heading_rad - st->route.heading_ref_rad);
+    }
 
     st->fan = 0;
     if (!st->started) {

@@ -142,3 +142,37 @@ void ffr_wall_cal_update(ffr_wall_cal_t *c, const ffr_wall_t *w, int side, float
         close_window(c, side, heading_rad, dist_mm);
     }
 }
+
+/* The pair's tilt says how much farther out the front ranger reads than the
+ * rear one on a wall beside, not which of the two is off: for two parts of
+ * the same spread, half each is the likeliest split. The side rangers' hits
+ * moved along their beams by that half (for where walls end: openings.c);
+ * the tilt was learned at the followed wall's distance, so the lateral error
+ * is taken as there: tilt x the hits' spacing on such a wall. */
+void ffr_wall_cal_split(const ffr_wall_cal_t *c, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT],
+                        ffr_ir_geom_t *g)
+{
+    int side;
+    for (side = 0; side < 2; ++side) {
+        int f = side == FFR_SIDE_LEFT ? FFR_IR_LF : FFR_IR_RF;
+        int r = side == FFR_SIDE_LEFT ? FFR_IR_LR : FFR_IR_RR;
+        float sf = ffr_absf(g->beam_sin[f]), sr = ffr_absf(g->beam_sin[r]);
+        float t = cfg->wall_target_mm, spacing, half, d;
+        if (c->bias_n[side] == 0u || sf < 0.3f || sr < 0.3f) {
+            continue;
+        }
+        spacing = cfg->ir_x_mm[f] + (t - ffr_absf(cfg->ir_y_mm[f])) * g->beam_cos[f] / sf
+                  - (cfg->ir_x_mm[r] + (t - ffr_absf(cfg->ir_y_mm[r])) * g->beam_cos[r] / sr);
+        half = 0.5f * c->bias_rad[side] * spacing * (side == FFR_SIDE_LEFT ? 1.0f : -1.0f);
+        if (ffr_ir_valid(cfg, ir_mm[f])) {
+            d = -half / sf;
+            g->hit_x_mm[f] += d * g->beam_cos[f];
+            g->hit_y_mm[f] += d * g->beam_sin[f];
+        }
+        if (ffr_ir_valid(cfg, ir_mm[r])) {
+            d = half / sr;
+            g->hit_x_mm[r] += d * g->beam_cos[r];
+            g->hit_y_mm[r] += d * g->beam_sin[r];
+        }
+    }
+}

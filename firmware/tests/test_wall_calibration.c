@@ -243,8 +243,60 @@ TEST(odometry_off_by_a_turn_is_brought_back_by_the_wall)
     CHECK(wd.r.st.wall_cal.bias_rad[FFR_SIDE_RIGHT] / FFR_DEG < -3.0f);
 }
 
+/* The pair's tilt split between its rangers for where walls end: each side's
+ * front hit moves in along its beam by half the lateral difference the tilt
+ * makes at the followed wall's spacing, the rear hit out by as much; a side
+ * that learned nothing, an invalid reading and the other rangers keep theirs. */
+TEST(a_pairs_tilt_is_split_half_each_along_the_beams)
+{
+    ffr_config_t cfg;
+    ffr_ir_geom_t g, before;
+    ffr_wall_cal_t c;
+    float ir[FFR_IR_COUNT];
+    float spacing, half;
+    int i;
+    ffr_config_default(&cfg);
+    ffr_ir_geom_init(&g, &cfg);
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        ir[i] = 250.0f;
+    }
+    ir[FFR_IR_RR] = FFR_IR_NONE(&cfg);
+    ffr_ir_geom_update(&g, &cfg, ir);
+    before = g;
+    ffr_wall_cal_reset(&c);
+    /* nothing learned: nothing moves */
+    ffr_wall_cal_split(&c, &cfg, ir, &g);
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        CHECK(g.hit_x_mm[i] == before.hit_x_mm[i] && g.hit_y_mm[i] == before.hit_y_mm[i]);
+    }
+    /* the left pair's line reads 6 degrees left of the wall, the right's 4 right
+     * of it: either way the front part reads farther out than the rear one */
+    c.bias_rad[FFR_SIDE_LEFT] = 6.0f * FFR_DEG;
+    c.bias_n[FFR_SIDE_LEFT] = 1u;
+    c.bias_rad[FFR_SIDE_RIGHT] = -4.0f * FFR_DEG;
+    c.bias_n[FFR_SIDE_RIGHT] = 1u;
+    ffr_wall_cal_split(&c, &cfg, ir, &g);
+    /* the hits' spacing on a wall at the followed distance, front to rear */
+    spacing = (cfg.ir_x_mm[FFR_IR_LF] + (cfg.wall_target_mm - cfg.ir_y_mm[FFR_IR_LF]))
+              - (cfg.ir_x_mm[FFR_IR_LR] - (cfg.wall_target_mm - cfg.ir_y_mm[FFR_IR_LR]));
+    CHECK(spacing > 300.0f);
+    half = 0.5f * 6.0f * FFR_DEG * spacing;
+    CHECK_NEAR(g.hit_y_mm[FFR_IR_LF], before.hit_y_mm[FFR_IR_LF] - half, 0.5);
+    CHECK_NEAR(g.hit_x_mm[FFR_IR_LF], before.hit_x_mm[FFR_IR_LF] - half, 0.5); /* 45 degrees: earlier as much */
+    CHECK_NEAR(g.hit_y_mm[FFR_IR_LR], before.hit_y_mm[FFR_IR_LR] + half, 0.5);
+    CHECK_NEAR(g.hit_x_mm[FFR_IR_LR], before.hit_x_mm[FFR_IR_LR] - half, 0.5);
+    /* right (y negative to the side): the front hit moves in, and earlier */
+    half = 0.5f * 4.0f * FFR_DEG * spacing;
+    CHECK_NEAR(g.hit_y_mm[FFR_IR_RF], before.hit_y_mm[FFR_IR_RF] + half, 0.5);
+    CHECK_NEAR(g.hit_x_mm[FFR_IR_RF], before.hit_x_mm[FFR_IR_RF] - half, 0.5);
+    /* no reading from the right rear: its hit stays where the geometry put it */
+    CHECK(g.hit_x_mm[FFR_IR_RR] == before.hit_x_mm[FFR_IR_RR] && g.hit_y_mm[FFR_IR_RR] == before.hit_y_mm[FFR_IR_RR]);
+    CHECK(g.hit_x_mm[FFR_IR_CF] == before.hit_x_mm[FFR_IR_CF] && g.hit_y_mm[FFR_IR_CF] == before.hit_y_mm[FFR_IR_CF]);
+}
+
 SUITE(wall_calibration,
       TEST_REF(a_pairs_tilt_is_learned_per_side),
+      TEST_REF(a_pairs_tilt_is_split_half_each_along_the_beams),
       TEST_REF(gaps_turns_and_other_walls_teach_nothing),
       TEST_REF(opposite_parts_no_longer_tilt_the_corridor_heading),
       TEST_REF(odometry_off_by_a_turn_is_brought_back_by_the_wall));
