@@ -18,6 +18,9 @@
  * A window needs both rangers on one straight wall every tick, the distance
  * close to a straight line and the pair's line steady; a gap, a side change,
  * a turn or a new route step starts a new one.
+ *
+ * The openings also take the tilt, split half each between the two parts
+ * (ffr_wall_cal_split, at the end).
  */
 #include "ffr_internal.h"
 
