@@ -93,16 +93,12 @@ def ablated(profile: dict[str, Any], ab: Ablation) -> dict[str, Any] | None:
 
 
 def profile_toml(name: str, profile: dict[str, Any]) -> str:
-    """One profile as a noise file (``--noise FILE.toml``)."""
-    from harness.scenario import _toml_value
+    """One profile as a noise file (``--noise FILE.toml``), by the scenario files' table writer."""
+    from harness.scenario import _toml_table
 
-    lines = [f"[{name}]"]
-    lines += [f"{k} = {_toml_value(v)}" for k, v in profile.items() if not isinstance(v, dict)]
-    for group, table in profile.items():
-        if isinstance(table, dict):
-            lines.append(f"[{name}.{group}]")
-            lines += [f"{k} = {_toml_value(v)}" for k, v in table.items()]
-    return "\n".join(lines) + "\n"
+    lines: list[str] = []
+    _toml_table(lines, name, profile)
+    return "\n".join(lines).lstrip("\n") + "\n"
 
 
 Runner = Callable[[list[str]], Any]

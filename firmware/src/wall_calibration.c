@@ -151,7 +151,9 @@ void ffr_wall_cal_update(ffr_wall_cal_t *c, const ffr_wall_t *w, int side, float
  * the same spread, half each is the likeliest split. The side rangers' hits
  * moved along their beams by that half (for where walls end: openings.c);
  * the tilt was learned at the followed wall's distance, so the lateral error
- * is taken as there: tilt x the hits' spacing on such a wall. */
+ * is taken as there: tilt x the hits' spacing on such a wall. The spacing
+ * depends on the configuration only, but is worked out each call: the state
+ * is at FFR_STATE_MAX (docs/contract.md) and has no room to keep it. */
 void ffr_wall_cal_split(const ffr_wall_cal_t *c, const ffr_config_t *cfg, const float ir_mm[FFR_IR_COUNT],
                         ffr_ir_geom_t *g)
 {
