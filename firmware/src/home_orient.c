@@ -167,7 +167,7 @@
 #define CHORD_STEP_MM 45.0f
 /* The arbitrary start (a hallway, any heading): a straight step forward
  * before the first sweep, when a rear ranger reads nothing within
- * HALL_OPEN_MM (hallway_step). Chosen: 100 mm and 750 mm (60, 100 and 150
+ * HALL_OPEN_MM (first_step). Chosen: 100 mm and 750 mm (60, 100 and 150
  * mm, 600 and 750 mm and no condition measured: docs/robustness.md, "A step
  * before the sweep from a hallway start") */
 #define HALL_STEP_MM 100.0f
@@ -1865,20 +1865,60 @@ static uint8_t lead_grew(const ffr_state_t *st)
  * (docs/robustness.md). So only where such an end is likely: a rear ranger
  * reading no wall within HALL_OPEN_MM (open floor behind that side, the
  * body at a mouth or a door), and on the first look only (nothing moved
- * yet), the floor ahead as the rangers see it free. 1 when the step starts. */
-static int hallway_step(ffr_state_t *st)
+ * yet), the floor ahead as the rangers see it free.
+ *
+ * From the home circle, only where the sweep would swing such an end into
+ * a front corner: nothing near as read (`side`, ffr_orient_sweep_side, is
+ * 0: the sweep turns toward home_wall_side), both rangers of the side it
+ * turns toward reading no wall within OPEN_SIDE_MM, and both of the other
+ * side reading one (a hallway's far wall along it). That is the body in a
+ * hallway by a junction, the outer corner of the block between two open
+ * ways 25-50 mm off its side between the beams (the 2004 arena's home
+ * beside the middle room's corner): turning toward it brings it to the
+ * front corner (156 mm from the axle). Not toward the other side: turning
+ * away passes such an end by the rear corner (141 mm), and the step can
+ * bring one standing ahead of the axle to beside it (the hallway's rule
+ * from home: orientation benches +6 and -4 of 8,000). Nor with no wall
+ * along the other side: one wall behind the body may be the only one to go
+ * by, and the step takes the body away from it (test
+ * a_small_shift_across_the_way_is_not_made). Chosen: 400 mm (300, 400 and
+ * 750 measured: docs/robustness.md, "A step before the sweep toward an open
+ * side, from home"). 1 when the step starts. */
+#define OPEN_SIDE_MM 400.0f
+static int first_step(ffr_state_t *st, int side)
 {
     const ffr_config_t *cfg = &st->cfg;
-    uint8_t rear;
-    int i, open = 0;
-    if (cfg->start_area != FFR_START_HALLWAY || st->odo.dist_mm > 0.0f || st->orient.escapes != 0u) {
+    const ffr_ir_geom_t *g = &st->ir_geom;
+    float turn = cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? -1.0f : 1.0f;
+    int i, open = 0, n = 0, m = 0;
+    if (st->odo.dist_mm > 0.0f || st->orient.escapes != 0u || (cfg->start_area != FFR_START_HALLWAY && side != 0)) {
         return 0; /* before anything else: the first look's tick is among the heaviest (docs/pil.md) */
     }
-    rear = rear_beams(st);
     for (i = 0; i < FFR_IR_COUNT; ++i) {
-        if ((rear >> i) & 1 && (!ffr_ir_valid(cfg, st->ir_mm[i]) || st->ir_mm[i] >= HALL_OPEN_MM)) {
-            open = 1;
+        int far;
+        if (cfg->start_area == FFR_START_HALLWAY) {
+            /* a rear ranger open */
+            open |= g->beam_cos[i] < -0.5f && (!ffr_ir_valid(cfg, st->ir_mm[i]) || st->ir_mm[i] >= HALL_OPEN_MM);
+            continue;
         }
+        /* one loop, out at the first reading against it (the first look's tick is
+         * the firmware's heaviest, docs/pil.md): both rangers of the turning side
+         * open, both of the other side on a wall */
+        far = !ffr_ir_valid(cfg, st->ir_mm[i]) || st->ir_mm[i] >= OPEN_SIDE_MM;
+        if (g->beam_sin[i] * turn > 0.5f) {
+            if (!far) {
+                return 0;
+            }
+            ++n;
+        } else if (g->beam_sin[i] * turn < -0.5f) {
+            if (far) {
+                return 0;
+            }
+            ++m;
+        }
+    }
+    if (cfg->start_area != FFR_START_HALLWAY) {
+        open = n > 0 && m > 0;
     }
     if (!open || straight_room(st, 0) <= HALL_STEP_MM || corner_room(st) < CORNER_FREE_MM + HALL_STEP_MM) {
         return 0;
@@ -1951,12 +1991,14 @@ int ffr_orient_step(ffr_state_t *st)
         uint8_t suspects = FFR_HOME_FOLD_MM > 0.0f || o->escapes > 0u
                                ? 0u
                                : ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_FOLD_MAX_MM);
-        if (rear_fold_move(st, suspects) || front_fold_move(st, suspects) || !clear_step(st) ||
-            hallway_step(st)) {
+        if (rear_fold_move(st, suspects) || front_fold_move(st, suspects) || !clear_step(st)) {
+            return 0;
+        }
+        side = ffr_orient_sweep_side(cfg, &st->ir_geom, st->ir_mm);
+        if (first_step(st, side)) {
             return 0;
         }
         /* room to turn: the sweep starts from here */
-        side = ffr_orient_sweep_side(cfg, &st->ir_geom, st->ir_mm);
         ffr_orient_reset(o, &st->odo);
         o->escapes = tries;
         o->sweep_side = (int8_t)side;

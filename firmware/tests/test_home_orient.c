@@ -2289,6 +2289,64 @@ TEST(from_a_hallway_open_behind_the_first_look_steps_forward_before_the_sweep)
     }
 }
 
+/* From the home circle: a junction's outer corner (the end of a block
+ * between two open ways) may stand 25-50 mm off a side between its two
+ * rangers' beams, where none sees it (orientation bench start seeds 6724,
+ * 7729, 9211: the middle room's outer corner by the right side). The sweep
+ * turns toward home_wall_side (right); with nothing near as read, both
+ * rangers of that side reading no wall within 400 mm and both of the other
+ * side reading one, the first look steps straight forward 100 mm before the
+ * sweep. Not with a wall read on the turning side, nor with the open side
+ * the other one, nor with no wall along the other side (one wall behind:
+ * beside_one_wall's), nor with the floor ahead shut. */
+enum { HOME_OPEN_TURN_SIDE, HOME_WALL_TURN_SIDE, HOME_OPEN_OTHER_SIDE, HOME_NOTHING_BESIDE, HOME_FRONT_SHUT };
+TEST(from_home_both_rangers_open_on_the_sweeps_side_the_first_look_steps_forward)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    int kind;
+    ffr_config_default(&cfg);
+    for (kind = HOME_OPEN_TURN_SIDE; kind <= HOME_FRONT_SHUT; ++kind) {
+        const ffr_home_orient_t *o = &r.st.orient;
+        float ir[FFR_IR_COUNT];
+        rig_init(&r, &cfg);
+        r.st.cfg.home_wall_side = FFR_HOME_WALL_RIGHT; /* the sweep turns right */
+        rig_no_walls(&cfg, ir);
+        /* start seed 6724's first readings: the left pair on the hallway's
+         * far wall, the right pair past the corner (RF, RR: nothing) */
+        ir[FFR_IR_CF] = 365.0f;
+        ir[FFR_IR_LF] = 311.0f;
+        ir[FFR_IR_LR] = 224.0f;
+        if (kind == HOME_WALL_TURN_SIDE) {
+            ir[FFR_IR_RR] = 380.0f;
+        } else if (kind == HOME_OPEN_OTHER_SIDE) {
+            ir[FFR_IR_LF] = FFR_IR_NONE(&cfg);
+            ir[FFR_IR_LR] = FFR_IR_NONE(&cfg);
+            ir[FFR_IR_RF] = 311.0f;
+            ir[FFR_IR_RR] = 224.0f;
+        } else if (kind == HOME_NOTHING_BESIDE) {
+            /* beside_one_wall facing 105 degrees: only the wall behind */
+            ir[FFR_IR_CF] = FFR_IR_NONE(&cfg);
+            ir[FFR_IR_LF] = FFR_IR_NONE(&cfg);
+            ir[FFR_IR_LR] = 375.0f;
+            ir[FFR_IR_RR] = 721.0f;
+        } else if (kind == HOME_FRONT_SHUT) {
+            ir[FFR_IR_CF] = 170.0f; /* 270 mm ahead of the axle: no room for the step */
+        }
+        look_from(&r, &cfg, ir);
+        CHECK(ffr_orient_step(&r.st) == 0);
+        CHECK(o->escapes == 0u);
+        if (kind == HOME_OPEN_TURN_SIDE) {
+            CHECK(o->phase == 8u); /* PH_ESCAPE */
+            CHECK(o->leg == 0u && o->reverse == 0u && o->target_rad == 0.0f);
+            CHECK(ffr_absf(o->goal_mm - r.st.odo.dist_mm - 100.0f) < 0.5f);
+        } else {
+            CHECK(o->phase == 0u); /* PH_SWEEP: the turn begins here */
+            CHECK(r.st.cmd_v_mm_s == 0.0f && r.st.cmd_w_rad_s != 0.0f);
+        }
+    }
+}
+
 SUITE(home_orient,
       TEST_REF(the_walls_direction_whatever_the_start_heading),
       TEST_REF(the_open_end_and_the_walls_around),
@@ -2328,6 +2386,7 @@ SUITE(home_orient,
       TEST_REF(a_fold_move_turned_back_goes_as_far_as_it_came_and_tells_fold_back),
       TEST_REF(a_line_across_a_corner_first_steps_forward_when_the_floor_allows),
       TEST_REF(from_a_hallway_open_behind_the_first_look_steps_forward_before_the_sweep),
+      TEST_REF(from_home_both_rangers_open_on_the_sweeps_side_the_first_look_steps_forward),
       TEST_REF(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind),
       TEST_REF(a_move_back_stops_when_a_rear_ranger_passes_its_peak),
       TEST_REF(a_shift_backward_stops_where_a_rear_ranger_reaches_its_bottom));
