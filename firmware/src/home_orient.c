@@ -1885,39 +1885,51 @@ static uint8_t lead_grew(const ffr_state_t *st)
  * 750 measured: docs/robustness.md, "A step before the sweep toward an open
  * side, from home"). 1 when the step starts. */
 #define OPEN_SIDE_MM 400.0f
+/* the sweep's turn when nothing near decides it: toward home_wall_side
+ * (+1 left, -1 right) */
+static float default_turn(const ffr_config_t *cfg)
+{
+    return cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? -1.0f : 1.0f;
+}
+
+/* ranger i reads no wall within far_mm (nothing read counts) */
+static int reads_open(const ffr_state_t *st, int i, float far_mm)
+{
+    return !ffr_ir_valid(&st->cfg, st->ir_mm[i]) || st->ir_mm[i] >= far_mm;
+}
+
 static int first_step(ffr_state_t *st, int side)
 {
     const ffr_config_t *cfg = &st->cfg;
-    const ffr_ir_geom_t *g = &st->ir_geom;
-    float turn = cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? -1.0f : 1.0f;
-    int i, open = 0, n = 0, m = 0;
+    int i, open = 0;
     if (st->odo.dist_mm > 0.0f || st->orient.escapes != 0u || (cfg->start_area != FFR_START_HALLWAY && side != 0)) {
         return 0; /* before anything else: the first look's tick is among the heaviest (docs/pil.md) */
     }
-    for (i = 0; i < FFR_IR_COUNT; ++i) {
-        int far;
-        if (cfg->start_area == FFR_START_HALLWAY) {
-            /* a rear ranger open */
-            open |= g->beam_cos[i] < -0.5f && (!ffr_ir_valid(cfg, st->ir_mm[i]) || st->ir_mm[i] >= HALL_OPEN_MM);
-            continue;
+    if (cfg->start_area == FFR_START_HALLWAY) {
+        uint8_t rear = rear_beams(st);
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            open |= (rear >> i) & 1 && reads_open(st, i, HALL_OPEN_MM);
         }
-        /* one loop, out at the first reading against it (the first look's tick is
-         * the firmware's heaviest, docs/pil.md): both rangers of the turning side
-         * open, both of the other side on a wall */
-        far = !ffr_ir_valid(cfg, st->ir_mm[i]) || st->ir_mm[i] >= OPEN_SIDE_MM;
-        if (g->beam_sin[i] * turn > 0.5f) {
-            if (!far) {
-                return 0;
+    } else {
+        /* one pass, out at the first reading against it (the first look's
+         * tick is the firmware's heaviest, docs/pil.md): both rangers of the
+         * turning side open, both of the other side on a wall */
+        float turn = default_turn(cfg);
+        int n = 0, m = 0;
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            float across = st->ir_geom.beam_sin[i] * turn;
+            if (across > 0.5f) {
+                if (!reads_open(st, i, OPEN_SIDE_MM)) {
+                    return 0;
+                }
+                ++n;
+            } else if (across < -0.5f) {
+                if (reads_open(st, i, OPEN_SIDE_MM)) {
+                    return 0;
+                }
+                ++m;
             }
-            ++n;
-        } else if (g->beam_sin[i] * turn < -0.5f) {
-            if (far) {
-                return 0;
-            }
-            ++m;
         }
-    }
-    if (cfg->start_area != FFR_START_HALLWAY) {
         open = n > 0 && m > 0;
     }
     if (!open || straight_room(st, 0) <= HALL_STEP_MM || corner_room(st) < CORNER_FREE_MM + HALL_STEP_MM) {
@@ -2005,9 +2017,7 @@ int ffr_orient_step(ffr_state_t *st)
     }
     if (o->phase == PH_SWEEP) {
         /* toward the side the route wants its wall on: it is usually the way back */
-        float sweep = (o->sweep_side != 0 ? (float)o->sweep_side
-                                          : cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? -1.0f : 1.0f) *
-                      ORIENT_SWEEP_DEG * FFR_DEG;
+        float sweep = (o->sweep_side != 0 ? (float)o->sweep_side : default_turn(cfg)) * ORIENT_SWEEP_DEG * FFR_DEG;
         float done = ffr_absf(st->odo.heading_rad - o->h0_rad);
         ffr_orient_record(o, cfg, &st->odo, &st->ir_geom, st->ir_mm);
         if (o->near_mm < ffr_orient_turn_radius_mm(cfg) + LINE_MARGIN_MM && o->escapes < ESCAPE_TRIES) {

@@ -2242,6 +2242,24 @@ TEST(a_line_across_a_corner_first_steps_forward_when_the_floor_allows)
     }
 }
 
+/* The orientation's first look from where look_from left it: with `steps`,
+ * the 100 mm straight step forward begins (first_step); else the sweep's
+ * turn begins at once. No escape is counted either way. */
+static void first_look_steps_or_sweeps(rig_t *r, int steps)
+{
+    const ffr_home_orient_t *o = &r->st.orient;
+    CHECK(ffr_orient_step(&r->st) == 0);
+    CHECK(o->escapes == 0u);
+    if (steps) {
+        CHECK(o->phase == 8u); /* PH_ESCAPE */
+        CHECK(o->leg == 0u && o->reverse == 0u && o->target_rad == 0.0f);
+        CHECK(ffr_absf(o->goal_mm - r->st.odo.dist_mm - 100.0f) < 0.5f);
+    } else {
+        CHECK(o->phase == 0u); /* PH_SWEEP: the turn begins here */
+        CHECK(r->st.cmd_v_mm_s == 0.0f && r->st.cmd_w_rad_s != 0.0f);
+    }
+}
+
 /* The arbitrary start: placed in a hallway, a wall's end may stand a
  * centimetre beside the body where no ranger sees it (the fresh +-2.5 cm
  * hallway row's start seed 298: a jamb 16 mm off the left side at the axle,
@@ -2258,7 +2276,6 @@ TEST(from_a_hallway_open_behind_the_first_look_steps_forward_before_the_sweep)
     int kind;
     ffr_config_default(&cfg);
     for (kind = STEP_OPEN_BEHIND; kind <= STEP_MOVED; ++kind) {
-        const ffr_home_orient_t *o = &r.st.orient;
         float ir[FFR_IR_COUNT];
         cfg.start_area = kind == STEP_FROM_HOME ? FFR_START_HOME : FFR_START_HALLWAY;
         rig_init(&r, &cfg);
@@ -2276,16 +2293,7 @@ TEST(from_a_hallway_open_behind_the_first_look_steps_forward_before_the_sweep)
         if (kind == STEP_MOVED) {
             r.st.odo.dist_mm = 5.0f;
         }
-        CHECK(ffr_orient_step(&r.st) == 0);
-        CHECK(o->escapes == 0u);
-        if (kind == STEP_OPEN_BEHIND) {
-            CHECK(o->phase == 8u); /* PH_ESCAPE */
-            CHECK(o->leg == 0u && o->reverse == 0u && o->target_rad == 0.0f);
-            CHECK(ffr_absf(o->goal_mm - r.st.odo.dist_mm - 100.0f) < 0.5f);
-        } else {
-            CHECK(o->phase == 0u); /* PH_SWEEP: the turn begins here */
-            CHECK(r.st.cmd_v_mm_s == 0.0f && r.st.cmd_w_rad_s != 0.0f);
-        }
+        first_look_steps_or_sweeps(&r, kind == STEP_OPEN_BEHIND);
     }
 }
 
@@ -2307,7 +2315,6 @@ TEST(from_home_both_rangers_open_on_the_sweeps_side_the_first_look_steps_forward
     int kind;
     ffr_config_default(&cfg);
     for (kind = HOME_OPEN_TURN_SIDE; kind <= HOME_FRONT_SHUT; ++kind) {
-        const ffr_home_orient_t *o = &r.st.orient;
         float ir[FFR_IR_COUNT];
         rig_init(&r, &cfg);
         r.st.cfg.home_wall_side = FFR_HOME_WALL_RIGHT; /* the sweep turns right */
@@ -2334,16 +2341,7 @@ TEST(from_home_both_rangers_open_on_the_sweeps_side_the_first_look_steps_forward
             ir[FFR_IR_CF] = 170.0f; /* 270 mm ahead of the axle: no room for the step */
         }
         look_from(&r, &cfg, ir);
-        CHECK(ffr_orient_step(&r.st) == 0);
-        CHECK(o->escapes == 0u);
-        if (kind == HOME_OPEN_TURN_SIDE) {
-            CHECK(o->phase == 8u); /* PH_ESCAPE */
-            CHECK(o->leg == 0u && o->reverse == 0u && o->target_rad == 0.0f);
-            CHECK(ffr_absf(o->goal_mm - r.st.odo.dist_mm - 100.0f) < 0.5f);
-        } else {
-            CHECK(o->phase == 0u); /* PH_SWEEP: the turn begins here */
-            CHECK(r.st.cmd_v_mm_s == 0.0f && r.st.cmd_w_rad_s != 0.0f);
-        }
+        first_look_steps_or_sweeps(&r, kind == HOME_OPEN_TURN_SIDE);
     }
 }
 
