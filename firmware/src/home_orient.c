@@ -126,6 +126,8 @@
 #define LEG_BACK 5u               /* the escape's leg: straight back, the front shut */
 #define LEG_FOLD 6u               /* the escape's leg: a fold move, straight (rear: forward; front: back) */
 #define LEG_TURNED 7u             /* the escape's leg: a fold move forward turned back (lead_grew) */
+#define LEG_BACK_S 8u             /* the escape's leg: straight back for the S's floor (back_for_s) */
+#define BACK_S_WALL_MM 500.0f     /* the other side's rear ranger reads a wall within this: a way's far wall (chosen) */
 /* The rear fold move's length: the default body's rear corner swings out
  * sqrt(100^2 + 100^2) - 100 = 41 mm turning in place; this, with a few mm
  * to spare (chosen: 60 put seed 51 of the held-out +-2.5 cm jitter row in
@@ -941,6 +943,43 @@ static void straight_leg(ffr_state_t *st, float len, uint8_t backward, uint8_t l
     o->phase = PH_ESCAPE;
 }
 
+/* The S forward away from a wall beside nearer than the rangers measure
+ * (skip: that side's pair at their span's bottom, beside_skip) cannot
+ * start: the floor ahead, front_beside mm, is shorter than the S of radius
+ * r and arc angle a needs. The leg would stop on the tick it began and the
+ * try be spent standing still; with four so spent the sweep's turn swung
+ * the rear corner into the wall beside (orientation bench start seeds
+ * 6830, 8692: a wall 200-280 mm ahead, about 308 mm of the 383 the S
+ * needs). First straight back by what the floor ahead lacks, for the wider
+ * S (ESCAPE_WIDE_MM, whose first arc swings the rear corner out less) as
+ * far as the floor behind allows, then the look again. Only when the other
+ * side's rear ranger reads a wall within BACK_S_WALL_MM, a way's far wall
+ * behind, the body along the near one: without it the "wall beside" may
+ * converge on the body, nearest at the rear corner, which backing drives
+ * into it (start seed 4392: 33 degrees off the axis, that ranger reading
+ * nothing; docs/robustness.md, "A move back for an S short of floor").
+ * 1 when the move began. */
+static int back_for_s(ffr_state_t *st, float ny, uint8_t skip, float front_beside, float lat, float r, float a)
+{
+    const ffr_config_t *cfg = &st->cfg;
+    float want = s_room(cfg, r, a) - front_beside + 10.0f;
+    float wide = s_room(cfg, ESCAPE_WIDE_MM, s_angle(lat, ESCAPE_WIDE_MM)) - front_beside + 10.0f;
+    float behind = end_room(st, 1, BAND_MARGIN_MM, skip) - cfg->body_front_mm - ESCAPE_FREE_MM;
+    int i, wall_behind = 0;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        if (st->ir_geom.beam_sin[i] * ny < -0.5f && st->ir_geom.beam_cos[i] < 0.0f &&
+            ffr_ir_valid(cfg, st->ir_mm[i]) && st->ir_mm[i] < BACK_S_WALL_MM) {
+            wall_behind = 1;
+        }
+    }
+    if (wall_behind && behind > want) {
+        want = wide < behind ? wide : behind;
+        straight_leg(st, want < ESCAPE_MAX_MM ? want : ESCAPE_MAX_MM, 1u, LEG_BACK_S);
+        return 1;
+    }
+    return 0;
+}
+
 /* One move away from a wall d mm off in direction (nx, ny) (body frame). */
 static void start_escape(ffr_state_t *st, float need, float d, float nx, float ny)
 {
@@ -968,7 +1007,7 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
         uint8_t skip = beside_skip(st, ny);
         float front = end_room(st, 0, ARC_BAND_MM, 0u);
         float front_beside = end_room(st, 0, ARC_BAND_MM, skip);
-        uint8_t was_back = o->leg == LEG_BACK;
+        uint8_t was_back = o->leg == LEG_BACK || o->leg == LEG_BACK_S;
         int shut;
         if (front_beside > s_room(&st->cfg, ESCAPE_RADIUS_MM, a)) {
             front = front_beside;
@@ -988,6 +1027,10 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
                 a = aw;
                 r = ESCAPE_WIDE_MM;
             }
+        }
+        if (!o->reverse && skip != 0u && !was_back && front_beside < s_room(&st->cfg, r, a) &&
+            back_for_s(st, ny, skip, front_beside, lat, r, a)) {
+            return;
         }
         if (!o->reverse && front < s_room(&st->cfg, r, a) && corner_chord(st, ny)) {
             /* the line cuts across a corner, and the floor ahead is shorter
@@ -1302,7 +1345,7 @@ static int clear_step(ffr_state_t *st)
         o->folded &= (uint8_t)~(o->reverse ? rear_beams(st) : front_beams(st));
     }
     /* the rangers this move goes away from: their readings tell fold-back */
-    if (o->leg == 0u || o->leg == LEG_BACK) {
+    if (o->leg == 0u || o->leg == LEG_BACK || o->leg == LEG_BACK_S) {
         mx = o->reverse ? -1.0f : 1.0f;
         my = 0.0f;
     } else {
@@ -1530,7 +1573,10 @@ static int escape_free(const ffr_state_t *st)
             return 0;
         }
     }
-    if (end_room(st, o->reverse & 1u, band, 0u) > need) {
+    /* back_for_s's move: the wall beside, at its span's bottom, is along the
+     * move, no end of it */
+    if (end_room(st, o->reverse & 1u, band,
+                 o->leg == LEG_BACK_S ? (uint8_t)(beside_skip(st, 1.0f) | beside_skip(st, -1.0f)) : 0u) > need) {
         return 1;
     }
     /* forward on the S's first arc: the wall beside read at the span's

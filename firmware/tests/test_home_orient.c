@@ -2085,6 +2085,67 @@ TEST(a_wall_beside_with_little_floor_ahead_still_gets_the_s)
     CHECK(s_forward);
 }
 
+/* The whole orientation among the walls of `box` (as orient_in_box):
+ * 1 if the body never met a wall; *first_leg: the first escape's leg (-1:
+ * none), *first_back its direction; *backed_s: whether back_for_s's move
+ * (LEG_BACK_S) was ever taken */
+static int orient_in_box_legs(const ffr_config_t *cfg, const float box[][3], int walls, int *first_leg,
+                              int *first_back, int *backed_s)
+{
+    rig_t r;
+    float ir[FFR_IR_COUNT];
+    int i, clear = 1;
+    rig_init(&r, cfg);
+    r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
+    r.in.start = 1;
+    *first_leg = -1;
+    *first_back = 0;
+    *backed_s = 0;
+    for (i = 0; i < 1500; ++i) {
+        box_readings(cfg, box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+        feed(&r, cfg, ir);
+        rig_tick(&r);
+        if (r.out.state != FFR_ST_ORIENT && i > 2) {
+            break;
+        }
+        if (*first_leg < 0 && r.st.orient.escapes > 0u) {
+            *first_leg = r.st.orient.leg;
+            *first_back = r.st.orient.reverse && r.st.orient.target_rad == 0.0f;
+        }
+        *backed_s |= r.st.orient.phase == 8u && r.st.orient.leg == 8u; /* PH_ESCAPE, LEG_BACK_S */
+        clear &= box_clear(box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+    }
+    return clear;
+}
+
+/* A wall along the right side 10-30 mm off, nearer than the rangers
+ * measure (RF and RR at their span's bottom), and one across 230 mm beyond
+ * the front: the S forward away from the first needs more floor ahead than
+ * that, so it stopped on the tick it began; with its four tries so spent,
+ * the sweep's turn swung the rear corner into the wall beside (orientation
+ * bench start seed 6830: CF 275, LF 500, RF and RR at the bottom, LR 322).
+ * With a way's far wall read behind on the other side (here one across
+ * 208 mm behind the rear, LR reading it at 322 mm), the first move is
+ * straight back for the S's floor, and the orientation ends with no
+ * contact. Without it (seed 4392: LR nothing; the wall beside may converge
+ * on the rear corner) no such move: the escape as before. */
+TEST(an_s_short_of_floor_ahead_backs_straight_first_with_a_far_wall_behind)
+{
+    ffr_config_t cfg;
+    float gap;
+    ffr_config_default(&cfg);
+    for (gap = 10.0f; gap <= 30.0f; gap += 5.0f) {
+        const float b[3][3] = {
+            {0.0f, -1.0f, cfg.body_half_width_mm + gap}, {1.0f, 0.0f, 330.0f}, {-1.0f, 0.0f, 308.0f}};
+        int first, back, backed;
+        CHECK(orient_in_box_legs(&cfg, b, 3, &first, &back, &backed));
+        CHECK(first == 8 && back); /* LEG_BACK_S */
+        /* no wall behind: the left rear ranger reads nothing */
+        (void)orient_in_box_legs(&cfg, b, 2, &first, &back, &backed);
+        CHECK(first == 1 && !backed); /* the S's first arc */
+    }
+}
+
 /* the first look with the left front and rear rangers both within the
  * span (112 and 118 mm): the rear fold move's readings; ir: as fed */
 static void rear_fold_start(rig_t *r, const ffr_config_t *cfg, float ir[FFR_IR_COUNT])
@@ -2380,6 +2441,7 @@ SUITE(home_orient,
       TEST_REF(a_straight_escape_back_between_walls_beside_goes_its_length),
       TEST_REF(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside),
       TEST_REF(a_wall_beside_with_little_floor_ahead_still_gets_the_s),
+      TEST_REF(an_s_short_of_floor_ahead_backs_straight_first_with_a_far_wall_behind),
       TEST_REF(a_fold_move_forward_turns_back_when_its_front_ranger_reads_longer),
       TEST_REF(a_fold_move_turned_back_goes_as_far_as_it_came_and_tells_fold_back),
       TEST_REF(a_line_across_a_corner_first_steps_forward_when_the_floor_allows),
