@@ -117,3 +117,14 @@ def test_the_block_is_told_of_a_ctrl_c_as_it_is_noted() -> None:
         assert not noted.is_set()
         os.kill(os.getpid(), signal.SIGINT)
         assert noted.is_set()  # a loop inside can stop on its own terms before the end raises
+
+
+def test_the_ctrl_c_tests_hold_when_the_suite_is_started_with_ctrl_c_ignored() -> None:
+    """A CI runner may start the suite with SIGINT ignored (tests/conftest.py puts Python's
+    handler back): the Ctrl-C test above, run so, still sees its command stopped by it."""
+    name = test_ctrl_c_while_numba_takes_the_generator_in_stops_the_command_cleanly.__name__
+    test = f"{Path(__file__).relative_to(REPO)}::{name}"
+    r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", test], cwd=REPO,
+                       preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN),
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stdout[-3000:]
