@@ -209,12 +209,12 @@ typedef struct {
 } ffr_speed_ctl_t;
 
 typedef struct {
+    float last_edge_mm;            /* odometry distance at the last edge      */
     uint8_t level;                 /* debounced line level                    */
     uint8_t count;
-    float last_edge_mm;            /* odometry distance at the last edge      */
     uint8_t edge;                  /* 1 on the tick of a new line             */
     uint8_t run;                   /* consecutive ticks reading white         */
-} ffr_line_counter_t;
+} ffr_line_counter_t;              /* the bytes together: 8, not 12 (the state is full, FFR_STATE_MAX) */
 
 typedef struct {
     uint8_t seen[2];               /* side wall seen long enough (L, R)       */
@@ -249,6 +249,8 @@ typedef struct {
     uint8_t pc;                    /* route program counter                   */
     float exit_wall_rad;           /* out of a room: a wall alongside the way out, its angle to
                                       the held heading off square (route.c); FFR_EXIT_WALL_NONE none */
+    float follow_mm;               /* HOME: the followed wall kept this far, the hallway's middle as
+                                      read (route.c, home_middle); 0: wall_target_mm */
 } ffr_route_state_t;
 
 /* One side ranger's hits in odometry's frame over a stretch of travel

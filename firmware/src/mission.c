@@ -32,6 +32,7 @@ void ffr_init(ffr_state_t *st, const ffr_config_t *cfg)
     st->route.phase = 0;
     st->route.pc = 0;
     st->route.exit_wall_rad = FFR_EXIT_WALL_NONE;
+    st->route.follow_mm = 0.0f;
     ffr_wall_cal_reset(&st->wall_cal);
     ffr_orient_reset(&st->orient, &st->odo);
     ffr_explore_reset(&st->explore);

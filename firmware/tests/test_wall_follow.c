@@ -366,6 +366,64 @@ TEST(out_of_a_room_the_heading_is_set_square_to_the_wall_beside_when_far_off)
     }
 }
 
+/* The default route's HOME(LEFT) (step 27, home from room 1) in a straight
+ * hallway on the rig, its walls at y = left_y and right_y: the robot starts
+ * on its middle line's left side, at wall_target_mm from the left wall,
+ * heading along it; beyond x = 900 mm the right wall opens (a junction).
+ * No line comes, so the step goes on. Returns the robot's y at x = 800 mm
+ * (both walls beside) and at x = 1500 mm (the right side open), from the
+ * rig's odometry (its wheels do not slip: the truth). */
+static void home_leg(float left_y, float right_y, float *y_both, float *y_open)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    rig_walls_t w = {0.0f, 0.0f, 0.0f, 900.0f, -2000.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    int i, ticks = 0;
+    ffr_config_default(&cfg);
+    cfg.home_wall_side = FFR_HOME_AS_PLACED; /* no orientation: the route at once */
+    CHECK(cfg.route[27].op == FFR_OP_HOME && cfg.route[27].side == FFR_SIDE_LEFT);
+    w.left_y = left_y - (left_y - cfg.wall_target_mm);
+    w.right_y = right_y - (left_y - cfg.wall_target_mm);
+    rig_init(&r, &cfg);
+    r.in.start = 1;
+    rig_tick(&r);
+    ffr_route_begin(&r.st, 27);
+    *y_both = *y_open = 1.0e9f;
+    while (r.st.odo.x_mm < 1500.0f && ticks++ < 3000) {
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            float b = rig_beam_mm(&cfg, &w, i, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+            r.in.ir_mv[i] = b < FFR_IR_NONE(&cfg) ? rig_mv_for_mm(&cfg, b) : 0u;
+        }
+        rig_tick(&r);
+        if (*y_both > 1.0e8f && r.st.odo.x_mm >= 800.0f) {
+            *y_both = r.st.odo.y_mm;
+        }
+    }
+    CHECK(r.out.state == FFR_ST_HOMING);
+    *y_open = r.st.odo.y_mm;
+}
+
+/* HOME follows its wall at the hallway's middle as read (route.c,
+ * home_middle), and keeps that distance where the other side opens: the
+ * home circle lies within the hallway, nearer its middle line than half the
+ * hallway less its radius. A 560 mm hallway (the robot starts 230 mm from
+ * its left wall, 50 mm left of the middle): on the middle within 15 mm by
+ * x = 800, and still within 25 mm 600 mm past the right wall's end; at
+ * wall_target_mm from the left wall (before) it stayed 50 mm off. The
+ * contest's 460 mm hallway: on its middle as before. A wall 700 mm off on the
+ * right (a junction, not a hallway): the left wall at wall_target_mm. */
+TEST(home_follows_the_hallways_middle_and_keeps_it_where_a_side_opens)
+{
+    float y_both, y_open;
+    home_leg(230.0f, -330.0f, &y_both, &y_open); /* the middle: y = -50 */
+    CHECK(ffr_absf(y_both + 50.0f) < 15.0f);
+    CHECK(ffr_absf(y_open + 50.0f) < 25.0f);
+    home_leg(230.0f, -230.0f, &y_both, &y_open);
+    CHECK(ffr_absf(y_both) < 15.0f && ffr_absf(y_open) < 15.0f);
+    home_leg(230.0f, -700.0f, &y_both, &y_open);
+    CHECK(ffr_absf(y_both) < 15.0f && ffr_absf(y_open) < 15.0f);
+}
+
 SUITE(wall_follow,
       TEST_REF(a_parallel_wall_on_target_needs_no_steering),
       TEST_REF(turned_toward_a_wall_steers_away),
@@ -375,5 +433,6 @@ SUITE(wall_follow,
       TEST_REF(a_front_corner_near_a_side_wall_is_steered_off_it),
       TEST_REF(on_the_corridor_middle_the_corner_guard_does_nothing),
       TEST_REF(the_last_stretch_past_an_opening_keeps_a_front_corner_off_a_wall),
+      TEST_REF(home_follows_the_hallways_middle_and_keeps_it_where_a_side_opens),
       TEST_REF(out_of_a_room_the_heading_is_set_square_to_the_wall_ahead_when_far_off),
       TEST_REF(out_of_a_room_the_heading_is_set_square_to_the_wall_beside_when_far_off));
