@@ -127,12 +127,9 @@ void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed)
             }
         }
         st->cmd_v_mm_s = v;
-        if (st->route.follow_mm > 0.0f) {
-            /* HOME's hallway middle (route.c, home_middle): the distance as
-             * the follower's error against wall_target_mm */
-            w.dist_mm += cfg->wall_target_mm - st->route.follow_mm;
-        }
-        st->cmd_w_rad_s = ffr_wall_follow_yaw(cfg, &w, use);
+        /* HOME's hallway middle (route.c, home_middle), else wall_target_mm */
+        st->cmd_w_rad_s = ffr_wall_follow_yaw(cfg, &w, use,
+                                              st->route.follow_mm > 0.0f ? st->route.follow_mm : cfg->wall_target_mm);
     } else {
         ffr_wall_cal_restart(&st->wall_cal);
         ffr_drive_heading(st, st->route.heading_ref_rad, v);

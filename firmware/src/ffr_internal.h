@@ -93,8 +93,9 @@ static inline int ffr_hit_beside(const ffr_config_t *cfg, const ffr_ir_geom_t *g
     *py = g->hit_y_mm[i];
     return ffr_absf(*py) < cfg->open_mm;
 }
-/* Yaw rate (rad/s) that brings the robot to wall_target_mm, parallel to the wall. */
-float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side);
+/* Yaw rate (rad/s) that brings the robot to target_mm from the wall (wall_target_mm,
+ * or HOME's hallway middle), parallel to it. */
+float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side, float target_mm);
 /* Yaw rate (rad/s) that holds heading_ref. */
 float ffr_heading_hold_yaw(const ffr_config_t *cfg, float heading, float heading_ref);
 

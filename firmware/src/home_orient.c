@@ -943,6 +943,12 @@ static void straight_leg(ffr_state_t *st, float len, uint8_t backward, uint8_t l
     o->phase = PH_ESCAPE;
 }
 
+/* ranger i reads no wall within far_mm (nothing read counts) */
+static int reads_open(const ffr_state_t *st, int i, float far_mm)
+{
+    return !ffr_ir_valid(&st->cfg, st->ir_mm[i]) || st->ir_mm[i] >= far_mm;
+}
+
 /* The S forward away from a wall beside nearer than the rangers measure
  * (skip: that side's pair at their span's bottom, beside_skip) cannot
  * start: the floor ahead, front_beside mm, is shorter than the S of radius
@@ -967,14 +973,14 @@ static int back_for_s(ffr_state_t *st, float ny, uint8_t skip, float front_besid
     float behind = end_room(st, 1, BAND_MARGIN_MM, skip) - cfg->body_front_mm - ESCAPE_FREE_MM;
     int i, wall_behind = 0;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
-        if (st->ir_geom.beam_sin[i] * ny < -0.5f && st->ir_geom.beam_cos[i] < 0.0f &&
-            ffr_ir_valid(cfg, st->ir_mm[i]) && st->ir_mm[i] < BACK_S_WALL_MM) {
-            wall_behind = 1;
+        /* the other side's rear ranger */
+        if (st->ir_geom.beam_sin[i] * ny < -0.5f && st->ir_geom.beam_cos[i] < 0.0f) {
+            wall_behind |= !reads_open(st, i, BACK_S_WALL_MM);
         }
     }
     if (wall_behind && behind > want) {
-        want = wide < behind ? wide : behind;
-        straight_leg(st, want < ESCAPE_MAX_MM ? want : ESCAPE_MAX_MM, 1u, LEG_BACK_S);
+        float len = wide < behind ? wide : behind;
+        straight_leg(st, len < ESCAPE_MAX_MM ? len : ESCAPE_MAX_MM, 1u, LEG_BACK_S);
         return 1;
     }
     return 0;
@@ -1936,12 +1942,6 @@ static uint8_t lead_grew(const ffr_state_t *st)
 static float default_turn(const ffr_config_t *cfg)
 {
     return cfg->home_wall_side == FFR_HOME_WALL_RIGHT ? -1.0f : 1.0f;
-}
-
-/* ranger i reads no wall within far_mm (nothing read counts) */
-static int reads_open(const ffr_state_t *st, int i, float far_mm)
-{
-    return !ffr_ir_valid(&st->cfg, st->ir_mm[i]) || st->ir_mm[i] >= far_mm;
 }
 
 static int first_step(ffr_state_t *st, int side)

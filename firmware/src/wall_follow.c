@@ -69,7 +69,7 @@ float ffr_heading_hold_yaw(const ffr_config_t *cfg, float heading, float heading
     return ffr_clampf(cfg->heading_kp * err, -lim, lim);
 }
 
-float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side)
+float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side, float target_mm)
 {
     /* wanted heading relative to the wall: toward it when too far */
     float sign = side == FFR_SIDE_LEFT ? 1.0f : -1.0f;
@@ -77,7 +77,7 @@ float ffr_wall_follow_yaw(const ffr_config_t *cfg, const ffr_wall_t *w, int side
     /* one ranger's distance (no wall angle) is the least sure: steer by it gently,
      * so a part that reads long or short does not swing the robot off the wall */
     float max_deg = w->angle_valid ? cfg->wall_max_deg : 0.4f * cfg->wall_max_deg;
-    float want = ffr_clampf(cfg->wall_kp_deg_per_mm * (w->dist_mm - cfg->wall_target_mm),
+    float want = ffr_clampf(cfg->wall_kp_deg_per_mm * (w->dist_mm - target_mm),
                             -max_deg, max_deg) * FFR_DEG * sign;
     /* the robot's heading relative to the wall is -angle */
     float err = want + w->angle_rad;

@@ -1851,30 +1851,53 @@ static int box_clear(const float box[][3], int walls, float x, float y, float th
     return 1;
 }
 
+/* What the orientation did in a closed loop among a box's walls
+ * (orient_run) */
+typedef struct {
+    int clear;      /* the body never met a wall                                */
+    int s_forward;  /* an S forward began (PH_ESCAPE, the S's first arc, forward) */
+    int first_leg;  /* the first escape's leg (-1: none)                        */
+    int first_back; /* ... and it was straight back                             */
+    int backed_s;   /* back_for_s's move (LEG_BACK_S) was taken                 */
+} orient_run_t;
+
 /* The whole firmware orienting among the walls of `box` (box_readings)
- * from the origin heading 0 until it leaves ORIENT (or 1500 ticks): 1 if
- * the body never met a wall; *s_forward: whether an S forward began */
-static int orient_in_box(const ffr_config_t *cfg, const float box[][3], int walls, int *s_forward)
+ * from the origin heading 0 until it leaves ORIENT (or 1500 ticks) */
+static orient_run_t orient_run(const ffr_config_t *cfg, const float box[][3], int walls)
 {
     rig_t r;
     float ir[FFR_IR_COUNT];
-    int i, clear = 1;
+    orient_run_t run = {1, 0, -1, 0, 0};
+    int i;
     rig_init(&r, cfg);
     r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
     r.in.start = 1;
-    *s_forward = 0;
     for (i = 0; i < 1500; ++i) {
+        const ffr_home_orient_t *o = &r.st.orient;
         box_readings(cfg, box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
         feed(&r, cfg, ir);
         rig_tick(&r);
         if (r.out.state != FFR_ST_ORIENT && i > 2) {
             break;
         }
-        /* PH_ESCAPE, the S's first arc, forward */
-        *s_forward |= r.st.orient.phase == 8u && r.st.orient.leg == 1u && !r.st.orient.reverse;
-        clear &= box_clear(box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+        if (run.first_leg < 0 && o->escapes > 0u) {
+            run.first_leg = o->leg;
+            run.first_back = o->reverse && o->target_rad == 0.0f;
+        }
+        run.s_forward |= o->phase == 8u && o->leg == 1u && !o->reverse; /* PH_ESCAPE */
+        run.backed_s |= o->phase == 8u && o->leg == 8u;                  /* PH_ESCAPE, LEG_BACK_S */
+        run.clear &= box_clear(box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
     }
-    return clear;
+    return run;
+}
+
+/* orient_run: 1 if the body never met a wall; *s_forward: whether an S
+ * forward began */
+static int orient_in_box(const ffr_config_t *cfg, const float box[][3], int walls, int *s_forward)
+{
+    orient_run_t run = orient_run(cfg, box, walls);
+    *s_forward = run.s_forward;
+    return run.clear;
 }
 
 /* A shift driven backward (phase 2, its turn done at once, then 3) of
@@ -2085,39 +2108,6 @@ TEST(a_wall_beside_with_little_floor_ahead_still_gets_the_s)
     CHECK(s_forward);
 }
 
-/* The whole orientation among the walls of `box` (as orient_in_box):
- * 1 if the body never met a wall; *first_leg: the first escape's leg (-1:
- * none), *first_back its direction; *backed_s: whether back_for_s's move
- * (LEG_BACK_S) was ever taken */
-static int orient_in_box_legs(const ffr_config_t *cfg, const float box[][3], int walls, int *first_leg,
-                              int *first_back, int *backed_s)
-{
-    rig_t r;
-    float ir[FFR_IR_COUNT];
-    int i, clear = 1;
-    rig_init(&r, cfg);
-    r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
-    r.in.start = 1;
-    *first_leg = -1;
-    *first_back = 0;
-    *backed_s = 0;
-    for (i = 0; i < 1500; ++i) {
-        box_readings(cfg, box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
-        feed(&r, cfg, ir);
-        rig_tick(&r);
-        if (r.out.state != FFR_ST_ORIENT && i > 2) {
-            break;
-        }
-        if (*first_leg < 0 && r.st.orient.escapes > 0u) {
-            *first_leg = r.st.orient.leg;
-            *first_back = r.st.orient.reverse && r.st.orient.target_rad == 0.0f;
-        }
-        *backed_s |= r.st.orient.phase == 8u && r.st.orient.leg == 8u; /* PH_ESCAPE, LEG_BACK_S */
-        clear &= box_clear(box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
-    }
-    return clear;
-}
-
 /* A wall along the right side 10-30 mm off, nearer than the rangers
  * measure (RF and RR at their span's bottom), and one across 230 mm beyond
  * the front: the S forward away from the first needs more floor ahead than
@@ -2137,12 +2127,12 @@ TEST(an_s_short_of_floor_ahead_backs_straight_first_with_a_far_wall_behind)
     for (gap = 10.0f; gap <= 30.0f; gap += 5.0f) {
         const float b[3][3] = {
             {0.0f, -1.0f, cfg.body_half_width_mm + gap}, {1.0f, 0.0f, 330.0f}, {-1.0f, 0.0f, 308.0f}};
-        int first, back, backed;
-        CHECK(orient_in_box_legs(&cfg, b, 3, &first, &back, &backed));
-        CHECK(first == 8 && back); /* LEG_BACK_S */
+        orient_run_t run = orient_run(&cfg, b, 3);
+        CHECK(run.clear);
+        CHECK(run.first_leg == 8 && run.first_back); /* LEG_BACK_S */
         /* no wall behind: the left rear ranger reads nothing */
-        (void)orient_in_box_legs(&cfg, b, 2, &first, &back, &backed);
-        CHECK(first == 1 && !backed); /* the S's first arc */
+        run = orient_run(&cfg, b, 2);
+        CHECK(run.first_leg == 1 && !run.backed_s); /* the S's first arc */
     }
 }
 

@@ -31,7 +31,7 @@ TEST(a_parallel_wall_on_target_needs_no_steering)
     CHECK_NEAR(w.dist_mm, 230.0, 0.5);
     CHECK_NEAR(w.angle_rad, 0.0, 1e-3);
     /* on target and parallel: no steering */
-    CHECK_NEAR(ffr_wall_follow_yaw(&cfg, &w, FFR_SIDE_LEFT), 0.0, 1e-3);
+    CHECK_NEAR(ffr_wall_follow_yaw(&cfg, &w, FFR_SIDE_LEFT, cfg.wall_target_mm), 0.0, 1e-3);
 }
 
 TEST(turned_toward_a_wall_steers_away)
@@ -53,7 +53,7 @@ TEST(turned_toward_a_wall_steers_away)
         CHECK(w.angle_valid);
         CHECK_NEAR(w.angle_rad, a, 0.002);
         CHECK_NEAR(w.dist_mm, 230.0, 1.0);
-        CHECK(ffr_wall_follow_yaw(&cfg, &w, FFR_SIDE_LEFT) < 0.0f);
+        CHECK(ffr_wall_follow_yaw(&cfg, &w, FFR_SIDE_LEFT, cfg.wall_target_mm) < 0.0f);
     }
 }
 
@@ -71,7 +71,7 @@ TEST(too_far_from_a_right_wall_steers_right_the_rear_ranger_alone_gives_distance
     w = ffr_wall_estimate(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_SIDE_RIGHT);
     CHECK(w.valid);
     CHECK_NEAR(w.dist_mm, 300.0, 0.5);
-    CHECK(ffr_wall_follow_yaw(&cfg, &w, FFR_SIDE_RIGHT) < 0.0f);
+    CHECK(ffr_wall_follow_yaw(&cfg, &w, FFR_SIDE_RIGHT, cfg.wall_target_mm) < 0.0f);
     /* only the rear ranger: distance without angle */
     ir[FFR_IR_RF] = FFR_IR_NONE(&cfg);
     w = ffr_wall_estimate(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_SIDE_RIGHT);
