@@ -1,6 +1,6 @@
 """How much room each start of a sweep left the robot, and how the starts fared by it.
 
-    python -m harness.start_room SWEEP.csv [--bins 10,20,40,80] [--rows FILE.tsv]
+    python -m harness.start_room SWEEP.csv [--bins 10,20,40,80] [--along DEG] [--rows FILE.tsv]
 
 Reads an ``ffr sweep --out`` CSV of a random or hallway start (``--start random|hallway``, any
 arena, jitter or robot) and, for each start pose, measures in the mission's own arena (jittered
@@ -15,7 +15,9 @@ not legal in it):
 
 It prints the starts and missions per gap band with their success rate, the same for the starts
 that must move before they can turn and for those that can turn in place, and every failed start
-(seed, gap, angle, axle, missions failed of run). ``--rows`` writes one tab-separated line per
+(seed, gap, angle, axle, missions failed of run). ``--along DEG`` adds the gap bands of the starts
+within DEG degrees of parallel to their nearest wall: the body along a wall, the case where an arc
+away from it swings the rear corner toward it (docs/robustness.md). ``--rows`` writes one tab-separated line per
 start. Geometry only: no mission is run again (seconds for thousands of rows; about a minute for
 2,000 rows of a jittered sweep, whose arenas are drawn again row by row). docs/robustness.md uses
 it to say which starts are left.
@@ -152,12 +154,15 @@ def _band_lines(starts: list[Start], bins: Sequence[float]) -> list[str]:
     return lines
 
 
-def report(starts: list[Start], bins: Sequence[float]) -> str:
+def report(starts: list[Start], bins: Sequence[float], along_deg: float | None = None) -> str:
     n = sum(s.missions for s in starts)
     ok = n - sum(s.failed for s in starts)
     turn = starts[0].turn_radius_mm if starts else 0.0
     lines = [f"{len(starts)} start poses, {n} missions, {ok} succeeded"
              + (f" ({100.0 * ok / n:.1f} %)" if n else ""), *_band_lines(starts, bins)]
+    if along_deg is not None:
+        lines.append(f"along a wall (the axis within {along_deg:g} degrees of its nearest wall):")
+        lines += _band_lines([s for s in starts if s.angle_deg < along_deg], bins)
     for must, what in ((True, f"must move before turning (axle nearer a wall than the turning radius, "
                                f"{turn:.0f} mm)"), (False, "can turn in place")):
         sel = [s for s in starts if s.must_move == must]
@@ -194,10 +199,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap.add_argument("csv", type=Path, help="an ffr sweep --out CSV of --start random or hallway")
     ap.add_argument("--bins", default=",".join(f"{b:.0f}" for b in DEFAULT_BINS),
                     help="the gap bands' edges, mm (default 10,20,40,80)")
+    ap.add_argument("--along", type=float, metavar="DEG",
+                    help="also the gap bands of the starts within DEG degrees of parallel to their nearest wall")
     ap.add_argument("--rows", type=Path, help="also one tab-separated line per start to this file")
     try:
         args = ap.parse_args(argv)
         bins = _bins(args.bins)
+        if args.along is not None and not 0.0 < args.along <= 90.0:
+            raise UsageError(f"--along = {args.along:g}: expected degrees above 0, at most 90")
         if args.rows is not None and (why := rows_target_problem(args.rows, args.csv)):
             raise UsageError(f"--rows = {str(args.rows)!r}: {why}")
         starts = starts_of(args.csv)
@@ -207,7 +216,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (UsageError, FfrInputError, ValueError) as exc:
         print(f"python -m harness.start_room: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
-    text = report(starts, bins)
+    text = report(starts, bins, args.along)
     if args.rows:
         lines = ["\t".join(("seed", "x", "y", "heading_deg", "gap_mm", "angle_deg", "axle_mm", "missions",
                             "failed"))]

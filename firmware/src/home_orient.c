@@ -128,6 +128,14 @@
 #define LEG_TURNED 7u             /* the escape's leg: a fold move forward turned back (lead_grew) */
 #define LEG_BACK_S 8u             /* the escape's leg: straight back for the S's floor (back_for_s) */
 #define BACK_S_WALL_MM 500.0f     /* the other side's rear ranger reads a wall within this: a way's far wall (chosen) */
+#define LEG_SOFT 9u               /* the escape's leg: the wide S's first arc, begun gently (soft_len) */
+/* That gentle start's radius. An arc of radius R away from a wall beside
+ * swings the rear corner toward it by up to sqrt(b^2 + (R + w/2)^2) -
+ * (R + w/2) before the body's angle carries it off (b, w/2: the corner
+ * behind and beside the axle; the default body 100 and 100 mm): 12 mm on
+ * ESCAPE_WIDE_MM's arc, 7 mm on this one. Chosen: 500 kept fewer starts,
+ * 600-800 about as many (docs/robustness.md, "The body along a wall") */
+#define ESCAPE_SOFT_MM 600.0f
 /* The rear fold move's length: the default body's rear corner swings out
  * sqrt(100^2 + 100^2) - 100 = 41 mm turning in place; this, with a few mm
  * to spare (chosen: 60 put seed 51 of the held-out +-2.5 cm jitter row in
@@ -986,6 +994,23 @@ static int back_for_s(ffr_state_t *st, float ny, uint8_t skip, float front_besid
     return 0;
 }
 
+/* The S's first arc from a wall beside, begun at ESCAPE_SOFT_MM and
+ * tightened to r once the body has turned through soft_turn: there the
+ * rear corner no longer swings toward the wall on r's arc (its swing stops
+ * at an angle b / (r + w/2); b taken as body_front_mm, the longer end, the
+ * rear being unknown to the firmware). The arc's length to turn through a. */
+static float soft_turn(const ffr_config_t *cfg, float a, float r)
+{
+    float t = cfg->body_front_mm / (r + cfg->body_half_width_mm);
+    return t < a ? t : a;
+}
+
+static float soft_len(const ffr_config_t *cfg, float a, float r)
+{
+    float t = soft_turn(cfg, a, r);
+    return ESCAPE_SOFT_MM * t + r * (a - t);
+}
+
 /* One move away from a wall d mm off in direction (nx, ny) (body frame). */
 static void start_escape(ffr_state_t *st, float need, float d, float nx, float ny)
 {
@@ -1067,6 +1092,17 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
         o->leg_mm = r * a;
         o->target_rad = (ny > 0.0f ? -1.0f : 1.0f) / r;
         o->goal_mm = st->odo.dist_mm + o->leg_mm;
+        if (!o->reverse && r == ESCAPE_WIDE_MM &&
+            front > s_room(&st->cfg, r, a) + soft_len(&st->cfg, a, r) - r * a) {
+            /* the wide S forward from a wall beside nearer than the rangers
+             * measure, begun gently where the floor ahead has room for its
+             * longer first arc: its rear corner swings out ~7 mm, not
+             * ~12 (orientation bench start seed 11437: 6 mm off the wall
+             * and parallel to it, met at once; held-out +-5 cm start seed
+             * 76). The second arc and the way back are the wide S's */
+            o->leg = LEG_SOFT;
+            o->goal_mm = st->odo.dist_mm + soft_len(&st->cfg, a, r);
+        }
         if (o->reverse && shut && !was_back) {
             /* the front shut (a wall at a front corner): not an S backward
              * at once. The rear pair look out at 135 degrees: they see none
@@ -1587,7 +1623,7 @@ static int escape_free(const ffr_state_t *st)
     }
     /* forward on the S's first arc: the wall beside read at the span's
      * bottom is no end, if the rest of the S fits ahead */
-    return o->leg == 1u && !o->reverse &&
+    return (o->leg == 1u || o->leg == LEG_SOFT) && !o->reverse &&
            end_room(st, 0, band, beside_skip(st, o->target_rad > 0.0f ? -1.0f : 1.0f)) >
                need + 0.9f * ((o->goal_mm - st->odo.dist_mm) + o->leg_mm);
 }
@@ -2014,9 +2050,16 @@ int ffr_orient_step(ffr_state_t *st)
             float v = ffr_stopping_speed(left, ESCAPE_SPEED_MM_S);
             st->cmd_v_mm_s = o->reverse ? -v : v;
             st->cmd_w_rad_s = st->cmd_v_mm_s * o->target_rad;
+            if (o->leg == LEG_SOFT) {
+                /* the gentle part first (leg_mm: the wide arc's length, r a) */
+                float a = o->leg_mm * ffr_absf(o->target_rad);
+                if (soft_len(cfg, a, ESCAPE_WIDE_MM) - left < ESCAPE_SOFT_MM * soft_turn(cfg, a, ESCAPE_WIDE_MM)) {
+                    st->cmd_w_rad_s = st->cmd_v_mm_s * (o->target_rad > 0.0f ? 1.0f : -1.0f) / ESCAPE_SOFT_MM;
+                }
+            }
             return 0;
         }
-        if (left <= 0.0f && o->leg == 1u) {
+        if (left <= 0.0f && (o->leg == 1u || o->leg == LEG_SOFT)) {
             /* the S's second arc: turning back */
             o->leg = 2u;
             o->target_rad = -o->target_rad;

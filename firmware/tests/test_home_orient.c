@@ -1424,6 +1424,9 @@ TEST(the_sweep_turns_toward_a_front_corner_read_folded_back_with_the_centre)
     /* the whole firmware on such starts: tests/scenario/test_start_pose.py */
 }
 
+/* the S's first arc: leg 1, or 9 where the wide S begins gently (LEG_SOFT) */
+static int s_first_arc(const ffr_home_orient_t *o) { return o->leg == 1u || o->leg == 9u; }
+
 /* The rig at the origin facing +x with the readings ir in, ORIENT begun and
  * its first step taken: the first move chosen */
 static void first_move(rig_t *r, const ffr_config_t *cfg, const float ir[FFR_IR_COUNT])
@@ -1451,7 +1454,7 @@ TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
     readings(&cfg, &right, 0.0f, 0.0f, 0.0f, ir);
     CHECK(ir[FFR_IR_RF] <= cfg.ir_min_mm + 0.5f && ir[FFR_IR_RR] <= cfg.ir_min_mm + 0.5f);
     first_move(&r, &cfg, ir);
-    CHECK(r.st.orient.leg == 1u && r.st.orient.reverse == 0u && r.st.orient.target_rad > 0.0f);
+    CHECK(s_first_arc(&r.st.orient) && r.st.orient.reverse == 0u && r.st.orient.target_rad > 0.0f);
     CHECK(ffr_orient_step(&r.st) == 0); /* ESCAPE: it moves */
     CHECK(r.st.cmd_v_mm_s > 0.0f && r.st.cmd_w_rad_s > 0.0f);
     {
@@ -1476,7 +1479,7 @@ TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
         CHECK(ir[FFR_IR_LF] <= cfg.ir_min_mm + 0.5f);
         CHECK(ir[FFR_IR_LR] > cfg.ir_min_mm + 0.5f && ir[FFR_IR_LR] <= cfg.ir_min_mm + 30.0f);
         first_move(&r, &cfg, ir);
-        CHECK(r.st.orient.leg == 1u && r.st.orient.reverse == 0u && r.st.orient.target_rad < 0.0f);
+        CHECK(s_first_arc(&r.st.orient) && r.st.orient.reverse == 0u && r.st.orient.target_rad < 0.0f);
         CHECK(orient_among(&left, 0.0f) == 2);
         /* the rear ranger reading more than 30 mm above its span's bottom
          * (BESIDE_REAR_MM): its wall may be another, the corner ranger's a
@@ -1486,10 +1489,10 @@ TEST(a_wall_beside_below_the_span_is_no_end_of_the_s)
         readings(&cfg, &left, 0.0f, 0.0f, 0.0f, ir);
         ir[FFR_IR_LR] = cfg.ir_min_mm + 31.0f;
         first_move(&r, &cfg, ir);
-        CHECK(!(r.st.orient.leg == 1u && r.st.orient.reverse == 0u));
+        CHECK(!(s_first_arc(&r.st.orient) && r.st.orient.reverse == 0u));
         ir[FFR_IR_LR] = cfg.ir_min_mm + 30.0f; /* just within: the wall beside */
         first_move(&r, &cfg, ir);
-        CHECK(r.st.orient.leg == 1u && r.st.orient.reverse == 0u);
+        CHECK(s_first_arc(&r.st.orient) && r.st.orient.reverse == 0u);
     }
 }
 
@@ -1515,8 +1518,9 @@ TEST(a_wall_beside_this_near_gets_the_wider_s_where_the_floor_allows)
         readings(&cfg, &w, 0.0f, 0.0f, 0.0f, ir);
         CHECK(ir[FFR_IR_LF] <= cfg.ir_min_mm + 0.5f && ir[FFR_IR_LR] <= cfg.ir_min_mm + 0.5f);
         first_move(&r, &cfg, ir);
-        CHECK(r.st.orient.leg == 1u && r.st.orient.reverse == 0u);
+        CHECK(s_first_arc(&r.st.orient) && r.st.orient.reverse == 0u);
         CHECK_NEAR(r.st.orient.target_rad, -1.0f / radius[k], 1e-6f);
+        CHECK(r.st.orient.leg == (k == 0 ? 9u : 1u)); /* the wide one begun gently (LEG_SOFT) */
         if (k == 0) {
             CHECK(orient_among(&w, 0.0f) == 2); /* the whole start: no contact */
         }
@@ -1884,7 +1888,7 @@ static orient_run_t orient_run(const ffr_config_t *cfg, const float box[][3], in
             run.first_leg = o->leg;
             run.first_back = o->reverse && o->target_rad == 0.0f;
         }
-        run.s_forward |= o->phase == 8u && o->leg == 1u && !o->reverse; /* PH_ESCAPE */
+        run.s_forward |= o->phase == 8u && s_first_arc(o) && !o->reverse; /* PH_ESCAPE */
         run.backed_s |= o->phase == 8u && o->leg == 8u;                  /* PH_ESCAPE, LEG_BACK_S */
         run.clear &= box_clear(box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
     }
@@ -2132,7 +2136,34 @@ TEST(an_s_short_of_floor_ahead_backs_straight_first_with_a_far_wall_behind)
         CHECK(run.first_leg == 8 && run.first_back); /* LEG_BACK_S */
         /* no wall behind: the left rear ranger reads nothing */
         run = orient_run(&cfg, b, 2);
-        CHECK(run.first_leg == 1 && !run.backed_s); /* the S's first arc */
+        CHECK((run.first_leg == 1 || run.first_leg == 9) && !run.backed_s); /* the S's first arc */
+    }
+}
+
+/* The body along a wall 7-12 mm off its left side, parallel to it, in a
+ * 46 cm hallway with the floor ahead free: both left rangers read their
+ * span's bottom. The wide S's first arc (300 mm) swings the rear corner
+ * ~12 mm toward the wall before the body's angle carries it off: on the
+ * build before, the corner met it at 7-11 mm (orientation bench start seed
+ * 11437: 6 mm off the south wall, met at once). The first arc begins at
+ * ESCAPE_SOFT_MM (~7 mm) and tightens once the body has turned far enough:
+ * the whole orientation with no contact. Nearer than ~7 mm it meets the
+ * wall too. A wall across 450 mm ahead leaves no floor for the longer arc:
+ * not begun gently there. */
+TEST(a_body_along_a_wall_leaves_it_by_an_s_begun_gently)
+{
+    ffr_config_t cfg;
+    float gap;
+    ffr_config_default(&cfg);
+    for (gap = 7.0f; gap <= 12.0f; gap += 1.0f) {
+        const float b[3][3] = {
+            {0.0f, 1.0f, cfg.body_half_width_mm + gap}, {0.0f, -1.0f, 460.0f - cfg.body_half_width_mm - gap},
+            {1.0f, 0.0f, 450.0f}};
+        orient_run_t run = orient_run(&cfg, b, 2);
+        CHECK(run.clear);
+        CHECK(run.first_leg == 9 && run.s_forward); /* LEG_SOFT */
+        run = orient_run(&cfg, b, 3);
+        CHECK(run.first_leg != 9);
     }
 }
 
@@ -2432,6 +2463,7 @@ SUITE(home_orient,
       TEST_REF(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside),
       TEST_REF(a_wall_beside_with_little_floor_ahead_still_gets_the_s),
       TEST_REF(an_s_short_of_floor_ahead_backs_straight_first_with_a_far_wall_behind),
+      TEST_REF(a_body_along_a_wall_leaves_it_by_an_s_begun_gently),
       TEST_REF(a_fold_move_forward_turns_back_when_its_front_ranger_reads_longer),
       TEST_REF(a_fold_move_turned_back_goes_as_far_as_it_came_and_tells_fold_back),
       TEST_REF(a_line_across_a_corner_first_steps_forward_when_the_floor_allows),

@@ -57,6 +57,26 @@ def test_the_command_prints_the_table_and_writes_rows(tmp_path: Path, capsys: py
     assert lines[1].split("\t")[0] == "105" and len(lines) == 2
 
 
+def test_along_adds_the_bands_of_the_starts_near_parallel_to_their_wall(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Seed 105's body is 17.7 degrees off its wall, seed 3's 10.4: --along 15 keeps seed 3 alone,
+    --along 20 both."""
+    far = "ffr run --candle 1.83,1.53 --seed 3 --start random"
+    src = _csv(tmp_path / "s.csv", [(105, False, NEAR), (3, True, far)])
+    assert start_room.main([str(src), "--bins", "10", "--along", "15"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    k = lines.index("along a wall (the axis within 15 degrees of its nearest wall):")
+    assert lines[k + 2].split() == ["0-10", "0", "0", "-", "0"]
+    assert lines[k + 3].split() == ["10+", "1", "1", "100.0%", "0"]
+    assert start_room.main([str(src), "--bins", "10", "--along", "20"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    k = lines.index("along a wall (the axis within 20 degrees of its nearest wall):")
+    assert lines[k + 2].split() == ["0-10", "1", "1", "0.0%", "1"]
+    assert lines[k + 3].split() == ["10+", "1", "1", "100.0%", "0"]
+    assert start_room.main([str(src)]) == 0
+    assert "along a wall" not in capsys.readouterr().out
+
+
 def test_a_jittered_seed_is_one_start_per_arena_it_drew(tmp_path: Path) -> None:
     """A jittered arena is drawn again while the candle is not legal in it, so one seed's missions
     may start in different arenas and poses (seed 51 of the +-2.5 cm row: the third candle's arena
@@ -90,6 +110,10 @@ def test_a_jittered_seed_is_one_start_per_arena_it_drew(tmp_path: Path) -> None:
     ("seed,success,replay\n", ["--bins", "20,10"], ["--bins", "20,10"]),
     ("seed,success,replay\n", ["--bins", "x"], ["--bins", "'x'"]),
     ("seed,success,replay\n", ["--what"], ["--what"]),
+    ("seed,success,replay\n", ["--along", "0"], ["--along", "0"]),
+    ("seed,success,replay\n", ["--along", "nan"], ["--along", "nan"]),
+    ("seed,success,replay\n", ["--along", "91"], ["--along", "91"]),
+    ("seed,success,replay\n", ["--along", "x"], ["--along", "'x'"]),
 ])
 def test_bad_input_gets_one_line_and_exit_2(tmp_path: Path, capsys: pytest.CaptureFixture[str],
                                            content: str | bytes | None, argv: list[str], names: list[str]) -> None:
