@@ -162,7 +162,7 @@ def report(starts: list[Start], bins: Sequence[float], along_deg: float | None =
              + (f" ({100.0 * ok / n:.1f} %)" if n else ""), *_band_lines(starts, bins)]
     if along_deg is not None:
         lines.append(f"along a wall (the axis within {along_deg:g} degrees of its nearest wall):")
-        lines += _band_lines([s for s in starts if s.angle_deg < along_deg], bins)
+        lines += _band_lines([s for s in starts if s.angle_deg <= along_deg], bins)
     for must, what in ((True, f"must move before turning (axle nearer a wall than the turning radius, "
                                f"{turn:.0f} mm)"), (False, "can turn in place")):
         sel = [s for s in starts if s.must_move == must]
@@ -206,7 +206,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = ap.parse_args(argv)
         bins = _bins(args.bins)
         if args.along is not None and not 0.0 < args.along <= 90.0:
-            raise UsageError(f"--along = {args.along:g}: expected degrees above 0, at most 90")
+            raise UsageError(f"--along = {args.along!r}: expected degrees above 0, at most 90")
         if args.rows is not None and (why := rows_target_problem(args.rows, args.csv)):
             raise UsageError(f"--rows = {str(args.rows)!r}: {why}")
         starts = starts_of(args.csv)

@@ -1028,7 +1028,8 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
         /* beside: an S away from it (an arc turning away, one turning back:
          * the heading as before, 2 R (1 - cos a) farther from the wall),
          * forward if the front is free, else backward; then straight back
-         * along the wall to where it began */
+         * along the wall to where it began (after a first arc begun gently,
+         * LEG_SOFT, (ESCAPE_SOFT_MM - r) sin(soft_turn), ~9 cm, short of it) */
         float lat = need - d + 10.0f;
         float a = s_angle(lat, ESCAPE_RADIUS_MM), r = ESCAPE_RADIUS_MM;
         /* turning away from the wall's side, either way driven */
@@ -2067,7 +2068,9 @@ int ffr_orient_step(ffr_state_t *st)
             return 0;
         }
         if (left <= 0.0f && o->leg == 2u) {
-            /* straight back along the wall, as far as the S went along it */
+            /* straight back along the wall, as far as the wide or plain S
+             * goes along it (a first arc begun gently went ~9 cm farther:
+             * the robot ends that much along, on floor found free) */
             o->leg = 3u;
             o->reverse ^= 1u;
             o->goal_mm = st->odo.dist_mm + 2.0f * ffr_sinf(o->leg_mm * ffr_absf(o->target_rad)) / ffr_absf(o->target_rad);

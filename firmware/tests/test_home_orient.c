@@ -1863,6 +1863,9 @@ typedef struct {
     int first_leg;  /* the first escape's leg (-1: none)                        */
     int first_back; /* ... and it was straight back                             */
     int backed_s;   /* back_for_s's move (LEG_BACK_S) was taken                 */
+    float first_rad; /* the first escape's curvature (target_rad, 1/mm)         */
+    int soft_arcs;  /* on LEG_SOFT's ticks: bit 0 driven at 1/ESCAPE_SOFT_MM
+                       (600 mm), bit 1 at 1/300 mm, as commanded              */
 } orient_run_t;
 
 /* The whole firmware orienting among the walls of `box` (box_readings)
@@ -1871,7 +1874,7 @@ static orient_run_t orient_run(const ffr_config_t *cfg, const float box[][3], in
 {
     rig_t r;
     float ir[FFR_IR_COUNT];
-    orient_run_t run = {1, 0, -1, 0, 0};
+    orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0};
     int i;
     rig_init(&r, cfg);
     r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
@@ -1887,6 +1890,11 @@ static orient_run_t orient_run(const ffr_config_t *cfg, const float box[][3], in
         if (run.first_leg < 0 && o->escapes > 0u) {
             run.first_leg = o->leg;
             run.first_back = o->reverse && o->target_rad == 0.0f;
+            run.first_rad = o->target_rad;
+        }
+        if (o->phase == 8u && o->leg == 9u && r.st.cmd_v_mm_s > 0.0f) { /* PH_ESCAPE, LEG_SOFT */
+            float k = ffr_absf(r.st.cmd_w_rad_s / r.st.cmd_v_mm_s);
+            run.soft_arcs |= (ffr_absf(k * 600.0f - 1.0f) < 0.01f ? 1 : 0) | (ffr_absf(k * 300.0f - 1.0f) < 0.01f ? 2 : 0);
         }
         run.s_forward |= o->phase == 8u && s_first_arc(o) && !o->reverse; /* PH_ESCAPE */
         run.backed_s |= o->phase == 8u && o->leg == 8u;                  /* PH_ESCAPE, LEG_BACK_S */
@@ -2146,10 +2154,11 @@ TEST(an_s_short_of_floor_ahead_backs_straight_first_with_a_far_wall_behind)
  * ~12 mm toward the wall before the body's angle carries it off: on the
  * build before, the corner met it at 7-11 mm (orientation bench start seed
  * 11437: 6 mm off the south wall, met at once). The first arc begins at
- * ESCAPE_SOFT_MM (~7 mm) and tightens once the body has turned far enough:
- * the whole orientation with no contact. Nearer than ~7 mm it meets the
- * wall too. A wall across 450 mm ahead leaves no floor for the longer arc:
- * not begun gently there. */
+ * ESCAPE_SOFT_MM (600 mm, ~7 mm) and tightens to 300 mm once the body has
+ * turned far enough (both curvatures commanded): the whole orientation
+ * with no contact. Nearer than ~7 mm it meets the wall too. A wall across
+ * 520 mm ahead leaves room for the wide S but not for the longer first
+ * arc: the wide S as before (leg 1 at 300 mm). */
 TEST(a_body_along_a_wall_leaves_it_by_an_s_begun_gently)
 {
     ffr_config_t cfg;
@@ -2158,12 +2167,14 @@ TEST(a_body_along_a_wall_leaves_it_by_an_s_begun_gently)
     for (gap = 7.0f; gap <= 12.0f; gap += 1.0f) {
         const float b[3][3] = {
             {0.0f, 1.0f, cfg.body_half_width_mm + gap}, {0.0f, -1.0f, 460.0f - cfg.body_half_width_mm - gap},
-            {1.0f, 0.0f, 450.0f}};
+            {1.0f, 0.0f, 520.0f}};
         orient_run_t run = orient_run(&cfg, b, 2);
         CHECK(run.clear);
         CHECK(run.first_leg == 9 && run.s_forward); /* LEG_SOFT */
+        CHECK(run.soft_arcs == 3);                   /* 600 mm, then 300 mm */
         run = orient_run(&cfg, b, 3);
-        CHECK(run.first_leg != 9);
+        CHECK(run.first_leg == 1 && run.soft_arcs == 0);
+        CHECK_NEAR(run.first_rad, -1.0f / 300.0f, 1e-6f); /* the wide S */
     }
 }
 
