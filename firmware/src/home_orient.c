@@ -1011,6 +1011,24 @@ static float soft_len(const ffr_config_t *cfg, float a, float r)
     return ESCAPE_SOFT_MM * t + r * (a - t);
 }
 
+/* the S's first arc, begun gently or not */
+static int s_first_arc(const ffr_home_orient_t *o) { return o->leg == 1u || o->leg == LEG_SOFT; }
+
+/* The yaw rate of an escape leg driven at v with left mm to go: its
+ * curvature (target_rad), the gentle part of LEG_SOFT's at ESCAPE_SOFT_MM
+ * (leg_mm: the wide arc's length, r a) */
+static float leg_yaw(const ffr_state_t *st, float v, float left)
+{
+    const ffr_home_orient_t *o = &st->orient;
+    if (o->leg == LEG_SOFT) {
+        float a = o->leg_mm * ffr_absf(o->target_rad);
+        if (soft_len(&st->cfg, a, ESCAPE_WIDE_MM) - left < ESCAPE_SOFT_MM * soft_turn(&st->cfg, a, ESCAPE_WIDE_MM)) {
+            return v * (o->target_rad > 0.0f ? 1.0f : -1.0f) / ESCAPE_SOFT_MM;
+        }
+    }
+    return v * o->target_rad;
+}
+
 /* One move away from a wall d mm off in direction (nx, ny) (body frame). */
 static void start_escape(ffr_state_t *st, float need, float d, float nx, float ny)
 {
@@ -1093,8 +1111,7 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
         o->leg_mm = r * a;
         o->target_rad = (ny > 0.0f ? -1.0f : 1.0f) / r;
         o->goal_mm = st->odo.dist_mm + o->leg_mm;
-        if (!o->reverse && r == ESCAPE_WIDE_MM &&
-            front > s_room(&st->cfg, r, a) + soft_len(&st->cfg, a, r) - r * a) {
+        if (!o->reverse && r == ESCAPE_WIDE_MM && front > s_room(&st->cfg, r, a) + soft_len(&st->cfg, a, r) - r * a) {
             /* the wide S forward from a wall beside nearer than the rangers
              * measure, begun gently where the floor ahead has room for its
              * longer first arc: its rear corner swings out ~7 mm, not
@@ -1624,7 +1641,7 @@ static int escape_free(const ffr_state_t *st)
     }
     /* forward on the S's first arc: the wall beside read at the span's
      * bottom is no end, if the rest of the S fits ahead */
-    return (o->leg == 1u || o->leg == LEG_SOFT) && !o->reverse &&
+    return s_first_arc(o) && !o->reverse &&
            end_room(st, 0, band, beside_skip(st, o->target_rad > 0.0f ? -1.0f : 1.0f)) >
                need + 0.9f * ((o->goal_mm - st->odo.dist_mm) + o->leg_mm);
 }
@@ -2050,17 +2067,10 @@ int ffr_orient_step(ffr_state_t *st)
         if (left > 0.0f && escape_free(st)) {
             float v = ffr_stopping_speed(left, ESCAPE_SPEED_MM_S);
             st->cmd_v_mm_s = o->reverse ? -v : v;
-            st->cmd_w_rad_s = st->cmd_v_mm_s * o->target_rad;
-            if (o->leg == LEG_SOFT) {
-                /* the gentle part first (leg_mm: the wide arc's length, r a) */
-                float a = o->leg_mm * ffr_absf(o->target_rad);
-                if (soft_len(cfg, a, ESCAPE_WIDE_MM) - left < ESCAPE_SOFT_MM * soft_turn(cfg, a, ESCAPE_WIDE_MM)) {
-                    st->cmd_w_rad_s = st->cmd_v_mm_s * (o->target_rad > 0.0f ? 1.0f : -1.0f) / ESCAPE_SOFT_MM;
-                }
-            }
+            st->cmd_w_rad_s = leg_yaw(st, st->cmd_v_mm_s, left);
             return 0;
         }
-        if (left <= 0.0f && (o->leg == 1u || o->leg == LEG_SOFT)) {
+        if (left <= 0.0f && s_first_arc(o)) {
             /* the S's second arc: turning back */
             o->leg = 2u;
             o->target_rad = -o->target_rad;
