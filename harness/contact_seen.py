@@ -14,8 +14,8 @@ contact, the ranger, its true range and reading; or ``unseen``. The summary coun
 seen, those seen by the touching corner's own ranger, and those last seen at a true range below
 the GP2D12's fold-back peak (80 mm: the output falls again nearer than that, so such a reading
 looks like a wall farther off; sim_plant/sensors/gp2d12.py). docs/robustness.md uses it to say
-what the orientation at the start misjudges. Uses the firmware library the harness loads
-(``FFR_FIRMWARE_LIB``).
+what the orientation at the start misjudges. Each row runs on its own firmware link (its replay's
+``--link`` or ``--firmware``); a link that cannot be opened is one line and exit status 2.
 
 ``--span N`` also runs the sweep's first N rows (failed or not) and counts, over every tick of
 their orientation (state ORIENT, up to any contact), the readings each ranger gave within the
@@ -243,6 +243,8 @@ def span_report(n_rows: int, counts: dict[str, tuple[int, int]], at_start: bool 
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    from ffr_link import LinkError
+    from ffr_link.abi import FirmwareLayoutError
     from harness.cli_args import EXIT_INPUT, UsageError, _Parser
     from harness.failure_places import rows_target_problem, write_rows
     from sim_plant.errors import FfrInputError
@@ -278,7 +280,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except OSError as exc:
         print(f"python -m harness.contact_seen: error: {args.csv}: {exc.strerror}", file=sys.stderr)
         return EXIT_INPUT
-    except (UsageError, FfrInputError, ValueError) as exc:
+    except (UsageError, FfrInputError, ValueError, LinkError, FirmwareLayoutError) as exc:
         print(f"python -m harness.contact_seen: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
     text = report(n_failed, contacts, args.near)

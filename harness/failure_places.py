@@ -14,8 +14,9 @@ tick, time, outcome, detail, and with ``--motion`` the motion) as tab-separated 
 ``--skip-seeds`` leaves out rows of those noise seeds (robots known to fail elsewhere). Each row is
 run from its own ``replay`` column, the ``ffr run`` command the sweep wrote for it, read by the
 CLI's own parser: a row of any sweep (random or hallway start, jittered arena, furniture, another
-arena or robot, ``--set``) runs as it ran. Uses the firmware library the harness loads
-(``FFR_FIRMWARE_LIB``).
+arena or robot, ``--set``) runs as it ran, on the row's own firmware link (its ``--link`` or
+``--firmware``: a sweep of a team's library is placed with that library, not ours). A link that
+cannot be opened is one line and exit status 2.
 """
 
 from __future__ import annotations
@@ -154,7 +155,8 @@ def place_of(row: dict[str, str]) -> Place:
     from harness.loop import I_CONTACT, I_PWM_L, I_PWM_R, I_STATE, I_STEP, run_mission
 
     candle = (float(row["candle_x"]), float(row["candle_y"]))
-    _, tr = run_mission(scenario_of(row))
+    scn, link = replay_of(row["replay"])
+    _, tr = run_mission(scn, link)
     names = tr.names_of_states()
     hits = np.nonzero(tr.i[:, I_CONTACT])[0]
     k = int(hits[0]) if len(hits) else len(tr.i) - 1
@@ -168,6 +170,8 @@ def place_of(row: dict[str, str]) -> Place:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    from ffr_link import LinkError
+    from ffr_link.abi import FirmwareLayoutError
     from harness.cli_args import UsageError, _Parser
 
     ap = _Parser(prog="python -m harness.failure_places", description=__doc__.split("\n")[0])
@@ -194,7 +198,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     try:
         places = [place_of(r) for r in rows if int(r["seed"]) not in skip]
-    except ValueError as e:
+    except (ValueError, LinkError, FirmwareLayoutError) as e:
         print(f"{args.csv}: {e}", file=sys.stderr)
         return 2
     if args.rows and not write_rows("python -m harness.failure_places", args.rows, [

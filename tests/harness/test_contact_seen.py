@@ -86,6 +86,11 @@ def test_bad_input_is_one_line_and_status_2(tmp_path: Path, capsys: pytest.Captu
         assert contact_seen.main(argv) == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and word in err
+    # a failed row runs again on its replay's own link: one that cannot be opened is bad input
+    gone = _csv(tmp_path / "team.csv", [(105, False, f"{NEAR} --firmware /no/such/libteam.so")])
+    assert contact_seen.main([str(gone)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "/no/such/libteam.so" in err
     bad = tmp_path / "bad.csv"
     bad.write_text("seed,success\n1,False\n")
     assert contact_seen.main([str(bad)]) == 2

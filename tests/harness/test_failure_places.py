@@ -111,3 +111,33 @@ def test_a_rows_file_that_cannot_be_written_is_one_line_before_any_run(
     assert src.read_text().startswith("room,")  # the sweep's CSV untouched
     assert main([str(src), "--no-such-flag"]) == 2
     assert capsys.readouterr().err.count("\n") == 1
+
+
+def test_a_row_runs_on_its_own_firmware_link(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                             monkeypatch: pytest.MonkeyPatch) -> None:
+    # a sweep of a team's library (--firmware) is placed with that library, not the one the harness
+    # loads by default: a library that is not there is the row's own link failing, one line, exit 2
+    gone = tmp_path / "libteam.so"
+    bad = _csv(tmp_path / "team.csv", [dict(ROW, replay=f"{ROW['replay']} --firmware {gone}")])
+    assert main([str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and str(gone) in err and "team.csv" in err
+    # and the link reaches the run as the replay names it
+    import harness.loop
+    from ffr_link.library import library_path
+    from harness.failure_places import place_of
+
+    links: list[str] = []
+    real = harness.loop.run_mission
+
+    def spy(scn: object, link: str = "ctypes:", **kw: object) -> object:
+        links.append(link)
+        return real(scn, link, **kw)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(harness.loop, "run_mission", spy)
+    ours = library_path()
+    named = place_of(dict(ROW, replay=f"{ROW['replay']} --firmware {ours}"))
+    plain = place_of(ROW)
+    assert links == [f"ctypes:{ours}", "ctypes:"]
+    assert (named.step, named.state, named.pose) == (plain.step, plain.state, plain.pose)
+

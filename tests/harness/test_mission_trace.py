@@ -34,6 +34,7 @@ def test_the_command_runs_the_replayed_mission(capsys: pytest.CaptureFixture[str
     (["ffr run --candle 1"], ["--candle", "'1'"]),
     (["ffr run --arena /no/such.toml"], ["/no/such.toml"]),
     (["ffr run 'unclosed"], ["unclosed"]),
+    (["ffr run --room 1 --link ctypes:/no/such/libteam.so"], ["/no/such/libteam.so"]),  # the replay's own link
 ])
 def test_bad_input_gets_one_line_and_exit_2(capsys: pytest.CaptureFixture[str], argv: list[str],
                                            names: list[str]) -> None:
