@@ -468,7 +468,14 @@ static void aim_start(aim_view_t *w, aim_lim_t *l, const ffr_config_t *cfg, floa
  * view. nu, nv: the hit on the -u, -v side of the robot's axes (-0: -).
  * A side's nearest hit counts only below twice the band (farther, neither
  * the body's half width nor the band's room between the sides depends on
- * it): a hit off an axis by that much and by open_mm skips that axis' tests */
+ * it): a hit off an axis by that much and by open_mm skips that axis' tests.
+ * A side's hit counts within the reach ahead only if it would be there even
+ * as far along as a short reading may have put it: the sweep's bins keep
+ * each bin's nearest hit, a far wall read short among them (orientation
+ * bench start seed 9649: the home hallway's north wall ~740 mm off read as
+ * ~530 mm, 96 mm off the way north's axis after the shift to the hallway's
+ * middle; the way was judged shut and the route set off west, into the
+ * middle hallway) */
 static inline void aim_hit(aim_view_t *w, const aim_lim_t *l, float u0, float v0)
 {
     uint32_t bu = fbits(u0 - l->cu), bv = fbits(v0 - l->cv);
@@ -480,10 +487,15 @@ static inline void aim_hit(aim_view_t *w, const aim_lim_t *l, float u0, float v0
             keep_min_bits(&w->beside[1u - nv], au);
         }
         if (au < l->ahead) {
-            g = fbits(v0 - l->cv + RANGE_SHORT_FRAC * v0) & ABS_BITS; /* as far off as it may be */
+            /* as far off the axis, and as far along it, as it may be (a
+             * reading short by RANGE_SHORT_FRAC): a side's hit shuts the
+             * way only if it is within the reach even so */
+            uint32_t af = fbits(u0 - l->cu + RANGE_SHORT_FRAC * u0) & ABS_BITS;
+            g = fbits(v0 - l->cv + RANGE_SHORT_FRAC * v0) & ABS_BITS;
             g = g > av ? g : av;
+            af = af > au ? af : au;
             if (g < l->two_band) {
-                if (au < l->reach) {
+                if (af < l->reach) {
                     keep_min_bits(&w->side[2u * (1u - nu) + 1u - nv], g);
                 }
                 if (au < l->near && bitsf(g) < l->band - AIM_BAND_SLOPE * bitsf(au)) {
@@ -498,10 +510,12 @@ static inline void aim_hit(aim_view_t *w, const aim_lim_t *l, float u0, float v0
             keep_min_bits(&w->beside[3u - nu], av);
         }
         if (av < l->ahead) {
+            uint32_t af = fbits(v0 - l->cv + RANGE_SHORT_FRAC * v0) & ABS_BITS;
             g = fbits(u0 - l->cu + RANGE_SHORT_FRAC * u0) & ABS_BITS;
             g = g > au ? g : au;
+            af = af > av ? af : av;
             if (g < l->two_band) {
-                if (av < l->reach) {
+                if (af < l->reach) {
                     keep_min_bits(&w->side[4u + 2u * (1u - nu) + 1u - nv], g);
                 }
                 if (av < l->near && bitsf(g) < l->band - AIM_BAND_SLOPE * bitsf(av)) {
