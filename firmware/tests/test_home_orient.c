@@ -373,7 +373,8 @@ TEST(a_narrow_hallway_off_its_middle_is_a_way)
 /* aimint's one-tick aim (branch aimint, 4d61471, AIM_PARTS 1): the
  * reference the firmware's faster scan (its bins turned into the walls'
  * frame once, distances compared by their bits, the hits beyond twice the
- * band off an axis skipped) must decide as */
+ * band off an axis skipped) must decide as. Since 30 Nov a side's hit
+ * counts within the reach as far along as it may be (lu, lv), in both */
 static int ref_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
                       float cy)
 {
