@@ -389,9 +389,10 @@ void ffr_orient_free4(const ffr_home_orient_t *o, float band, float dir0, float 
  * - wall[j] (j: +u, +v, -u, -v): a hit ahead along that axis within
  *   open_mm, in the body's path band (narrowing with distance) either way:
  *   a wall beside the ways square to it;
- * - side[q]: of the hits within a hallway's width ahead along u (`reach`),
- *   the nearest to the u axis, as far out as it may be, per quadrant q
- *   (u > 0, v > 0); side[4 + q] the same along v;
+ * - side[q]: of the hits within a hallway's width ahead along u (`reach`)
+ *   even as far out as they may be (lu), the nearest to the u axis, as far
+ *   out as it may be (lv), per quadrant q (u > 0, v > 0); side[4 + q] the
+ *   same along v;
  * - beside[i]: of the hits within open_mm of the u axis, the nearest to
  *   the axle along u, on the axis' +v side (i = 1) or not (0); beside[2 + i]
  *   the same along v, on its +u side (i = 1) or not.

@@ -306,6 +306,19 @@ TEST(a_far_wall_read_short_does_not_shut_the_way_along_the_hallway)
                           ? 2
                           : 1));
     }
+    /* the hit grown along its ray from the sweep's centre, not from the
+     * robot: standing 100 mm north of the centre, a hit 540 mm north of the
+     * centre (440 mm ahead of the robot) may be 675 mm off the centre, 575
+     * mm ahead: beyond the reach, north stays the way (grown from the robot,
+     * 550 mm, it would shut it) */
+    ffr_odometry_reset(&odo);
+    ffr_orient_reset(&o, &odo);
+    add_stretch(&o, 360.0f, -800.0f, 360.0f, 800.0f, 1.0f);
+    add_stretch(&o, -800.0f, -280.0f, 360.0f, -280.0f, 1.0f);
+    add_stretch(&o, -80.0f, 200.0f, -80.0f, 800.0f, 1.0f);
+    add_stretch(&o, -800.0f, 200.0f, -80.0f, 200.0f, 1.0f);
+    keep_nearest(&o, 130.0f - 96.0f, 540.0f);
+    CHECK(ffr_orient_choose(&o, &cfg, 0.0f, PI_F, 130.0f, 100.0f) == 1);
 }
 
 TEST(a_junction_read_short_keeps_the_way_with_its_wall)
@@ -379,7 +392,7 @@ static int ref_choose(const ffr_home_orient_t *o, const ffr_config_t *cfg, float
                       float cy)
 {
     float acc[20];
-    float band = cfg->body_half_width_mm + 30.0f, grow = 0.25f, slope = 0.0875f;
+    float band = cfg->body_half_width_mm + 30.0f, grow = RANGE_SHORT_FRAC_BUILT, slope = 0.0875f;
     float reach = 2.0f * cfg->wall_target_mm + cfg->body_half_width_mm, near = cfg->open_mm;
     float c = ffr_cosf(dir0), s = ffr_sinf(dir0), cu = cx * c + cy * s, cv = cy * c - cx * s;
     float best_turn = 0.0f, best_beside = 65535.0f;
@@ -1240,8 +1253,8 @@ TEST(a_far_wall_end_beside_the_way_does_not_close_it)
     CHECK_NEAR(f4[0], 482.0f, 0.5f);
     /* narrowed (5 degrees), the way ahead is open and chosen */
     CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) == 0);
-    /* a wall straight across 440 mm ahead still closes it: even read 25 %
-     * short (RANGE_SHORT_FRAC) it is within the reach (560 mm) */
+    /* a wall straight across 440 mm ahead still closes it: even 25 %
+     * farther (RANGE_SHORT_FRAC: 550 mm) it is within the reach (560 mm) */
     put_bin(&o, 9, 440.0f, 0.0f);
     put_bin(&o, 10, 440.0f, -60.0f);
     CHECK(ffr_orient_choose(&o, &cfg, 0.0f, 0.0f, 0.0f, 0.0f) != 0);
