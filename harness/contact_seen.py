@@ -243,10 +243,8 @@ def span_report(n_rows: int, counts: dict[str, tuple[int, int]], at_start: bool 
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    from ffr_link import LinkError
-    from ffr_link.abi import FirmwareLayoutError
     from harness.cli_args import EXIT_INPUT, UsageError, _Parser
-    from harness.failure_places import rows_target_problem, write_rows
+    from harness.failure_places import link_errors, rows_target_problem, write_rows
     from sim_plant.errors import FfrInputError
 
     ap = _Parser(prog="python -m harness.contact_seen", description=__doc__.split("\n")[0])
@@ -280,7 +278,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except OSError as exc:
         print(f"python -m harness.contact_seen: error: {args.csv}: {exc.strerror}", file=sys.stderr)
         return EXIT_INPUT
-    except (UsageError, FfrInputError, ValueError, LinkError, FirmwareLayoutError) as exc:
+    except (UsageError, FfrInputError, ValueError, *link_errors()) as exc:
         print(f"python -m harness.contact_seen: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
     text = report(n_failed, contacts, args.near)

@@ -145,6 +145,15 @@ def replay_of(command: str) -> tuple[Any, str]:
     return _scenarios(args, [args.room])[0], firmware_link(args.link, args.firmware)
 
 
+def link_errors() -> tuple[type[Exception], ...]:
+    """What opening a replay's firmware link may raise: bad input (one line, exit status 2), as
+    ``ffr run`` treats it. Imported here, not at the top: the tools start without the link layer."""
+    from ffr_link import LinkError
+    from ffr_link.abi import FirmwareLayoutError
+
+    return (LinkError, FirmwareLayoutError)
+
+
 def scenario_of(row: dict[str, str]) -> Any:
     """The scenario of a sweep row, from its replay command through the CLI's own parser."""
     return replay_of(row["replay"])[0]
@@ -170,8 +179,6 @@ def place_of(row: dict[str, str]) -> Place:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    from ffr_link import LinkError
-    from ffr_link.abi import FirmwareLayoutError
     from harness.cli_args import UsageError, _Parser
 
     ap = _Parser(prog="python -m harness.failure_places", description=__doc__.split("\n")[0])
@@ -198,7 +205,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     try:
         places = [place_of(r) for r in rows if int(r["seed"]) not in skip]
-    except (ValueError, LinkError, FirmwareLayoutError) as e:
+    except (ValueError, *link_errors()) as e:
         print(f"{args.csv}: {e}", file=sys.stderr)
         return 2
     if args.rows and not write_rows("python -m harness.failure_places", args.rows, [

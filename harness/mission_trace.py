@@ -71,13 +71,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (UsageError, FfrInputError, ValueError) as exc:
         print(f"python -m harness.mission_trace: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
-    from ffr_link import LinkError
-    from ffr_link.abi import FirmwareLayoutError
+    from harness.failure_places import link_errors
     from harness.loop import run_mission
 
     try:
         res, trace = run_mission(scenario, link)
-    except (LinkError, FirmwareLayoutError) as exc:  # the replay's link: bad input, one line
+    except link_errors() as exc:  # the replay's link: bad input, one line
         print(f"python -m harness.mission_trace: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
     print(f"outcome {res.outcome}" + (f": {res.detail}" if res.detail else ""))

@@ -480,28 +480,29 @@ static void aim_start(aim_view_t *w, aim_lim_t *l, const ffr_config_t *cfg, floa
 static inline void aim_hit(aim_view_t *w, const aim_lim_t *l, float u0, float v0)
 {
     uint32_t bu = fbits(u0 - l->cu), bv = fbits(v0 - l->cv);
-    uint32_t au = bu & ABS_BITS, av = bv & ABS_BITS, g;
+    uint32_t au = bu & ABS_BITS, av = bv & ABS_BITS, lu, lv;
     uint32_t nu = bu >> 31, nv = bv >> 31;
+    if (av >= l->axis && au >= l->axis) {
+        return; /* far off both axes (or no hit): none of their tests */
+    }
+    /* as far along each axis as it may be (a reading short by
+     * RANGE_SHORT_FRAC): off a way's axis, how far a side's hit is; along
+     * it, whether it is within the reach even so */
+    lu = fbits(u0 - l->cu + RANGE_SHORT_FRAC * u0) & ABS_BITS;
+    lv = fbits(v0 - l->cv + RANGE_SHORT_FRAC * v0) & ABS_BITS;
+    lu = lu > au ? lu : au;
+    lv = lv > av ? lv : av;
     if (av < l->axis) {
         /* near the u axis: the ways along u */
         if (av < l->near) {
             keep_min_bits(&w->beside[1u - nv], au);
         }
-        if (au < l->ahead) {
-            /* as far off the axis, and as far along it, as it may be (a
-             * reading short by RANGE_SHORT_FRAC): a side's hit shuts the
-             * way only if it is within the reach even so */
-            uint32_t af = fbits(u0 - l->cu + RANGE_SHORT_FRAC * u0) & ABS_BITS;
-            g = fbits(v0 - l->cv + RANGE_SHORT_FRAC * v0) & ABS_BITS;
-            g = g > av ? g : av;
-            af = af > au ? af : au;
-            if (g < l->two_band) {
-                if (af < l->reach) {
-                    keep_min_bits(&w->side[2u * (1u - nu) + 1u - nv], g);
-                }
-                if (au < l->near && bitsf(g) < l->band - AIM_BAND_SLOPE * bitsf(au)) {
-                    w->wall[2u * nu] = 1u;
-                }
+        if (au < l->ahead && lv < l->two_band) {
+            if (lu < l->reach) {
+                keep_min_bits(&w->side[2u * (1u - nu) + 1u - nv], lv);
+            }
+            if (au < l->near && bitsf(lv) < l->band - AIM_BAND_SLOPE * bitsf(au)) {
+                w->wall[2u * nu] = 1u;
             }
         }
     }
@@ -510,18 +511,12 @@ static inline void aim_hit(aim_view_t *w, const aim_lim_t *l, float u0, float v0
         if (au < l->near) {
             keep_min_bits(&w->beside[3u - nu], av);
         }
-        if (av < l->ahead) {
-            uint32_t af = fbits(v0 - l->cv + RANGE_SHORT_FRAC * v0) & ABS_BITS;
-            g = fbits(u0 - l->cu + RANGE_SHORT_FRAC * u0) & ABS_BITS;
-            g = g > au ? g : au;
-            af = af > av ? af : av;
-            if (g < l->two_band) {
-                if (af < l->reach) {
-                    keep_min_bits(&w->side[4u + 2u * (1u - nu) + 1u - nv], g);
-                }
-                if (av < l->near && bitsf(g) < l->band - AIM_BAND_SLOPE * bitsf(av)) {
-                    w->wall[1u + 2u * nv] = 1u;
-                }
+        if (av < l->ahead && lu < l->two_band) {
+            if (lv < l->reach) {
+                keep_min_bits(&w->side[4u + 2u * (1u - nu) + 1u - nv], lu);
+            }
+            if (av < l->near && bitsf(lu) < l->band - AIM_BAND_SLOPE * bitsf(av)) {
+                w->wall[1u + 2u * nv] = 1u;
             }
         }
     }
