@@ -123,6 +123,8 @@
 #define ESCAPE_START_MM 0.0f      /* the front shut: less room than this beyond ESCAPE_FREE_MM (chosen) */
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
 #define BESIDE_REAR_MM 30.0f      /* a rear ranger this far above its span's bottom: the wall beside */
+#define LEG_PROBE_RETURN 4u       /* the probe's way back to where it stood (nothing folded back) */
+#define LEG_ALONG_RETURN 10u      /* the same for unfold_front's probe: the wall beside along it */
 #define LEG_BACK 5u               /* the escape's leg: straight back, the front shut */
 #define LEG_FOLD 6u               /* the escape's leg: a fold move, straight (rear: forward; front: back) */
 #define LEG_TURNED 7u             /* the escape's leg: a fold move forward turned back (lead_grew) */
@@ -910,6 +912,11 @@ static float end_room(const ffr_state_t *st, int backward, float band, uint8_t s
 static float straight_room(const ffr_state_t *st, int backward);
 static uint8_t beside_skip(const ffr_state_t *st, float side);
 static int line_reading(const ffr_config_t *cfg, float d);
+/* both sides' walls beside at the span's bottom (beside_skip): along a straight move */
+static uint8_t along_skip(const ffr_state_t *st) { return (uint8_t)(beside_skip(st, 1.0f) | beside_skip(st, -1.0f)); }
+static int escape_free(const ffr_state_t *st);
+static uint8_t front_beams(const ffr_state_t *st);
+static int unfold_front(ffr_state_t *st);
 
 /* An S of arcs of radius r that ends lat mm farther from the wall: each
  * arc's angle (2 r (1 - cos a) = lat) */
@@ -1131,6 +1138,15 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
             o->leg = LEG_SOFT;
             o->goal_mm = st->odo.dist_mm + soft_len(&st->cfg, a, r);
         }
+        if (!o->reverse) {
+            /* the S forward as it would begin: one that stops on its first
+             * tick spends the try standing */
+            o->phase = PH_ESCAPE;
+            ffr_orient_watch_leg(st);
+            if (!escape_free(st) && unfold_front(st)) {
+                return;
+            }
+        }
         if (o->reverse && shut && !was_back) {
             /* the front shut (a wall at a front corner): not an S backward
              * at once. The rear pair look out at 135 degrees: they see none
@@ -1223,14 +1239,12 @@ int ffr_orient_probe_back(const ffr_ir_geom_t *g, uint8_t suspects)
  * moving away): over 15 mm a wall as read changes by about 10 mm, one
  * folded back by 3-4 times more the other way. It stops early only when a
  * ranger it moves toward reads folded back. */
-static int escape_free(const ffr_state_t *st);
-
 static void probe_step(ffr_state_t *st)
 {
     ffr_home_orient_t *o = &st->orient;
     uint8_t genuine = 0u, folded = 0u, ahead;
     float left = o->goal_mm - st->odo.dist_mm;
-    if (o->leg == 4u) {
+    if (o->leg == LEG_PROBE_RETURN || o->leg == LEG_ALONG_RETURN) {
         /* nothing folded back: back to where it stood (the sweep from there
          * sees what it would have seen without the probe) */
         if (left > 0.0f && escape_free(st)) {
@@ -1259,7 +1273,7 @@ static void probe_step(ffr_state_t *st)
     o->probed = 0u;
     o->phase = PH_CLEAR;
     if (folded == 0u) {
-        o->leg = 4u;
+        o->leg = o->leg == LEG_BACK_S ? LEG_ALONG_RETURN : LEG_PROBE_RETURN;
         o->reverse ^= 1u;
         o->goal_mm = st->odo.dist_mm + (PROBE_MM - left);
         o->phase = PH_PROBE;
@@ -1335,6 +1349,56 @@ static int front_fold_move(ffr_state_t *st, uint8_t suspects)
            fold_move_if_room(st, (uint8_t)(suspects & front_beams(st)), FRONT_FOLD_MOVE_MM, 1u);
 }
 
+/* The probe (probe_step) away from the suspects' walls, backward or not */
+static void start_probe(ffr_state_t *st, uint8_t suspects, uint8_t backward)
+{
+    ffr_home_orient_t *o = &st->orient;
+    int i;
+    o->probe_done = 1u;
+    o->reverse = backward;
+    o->target_rad = 0.0f;
+    o->goal_mm = st->odo.dist_mm + PROBE_MM;
+    o->probed = suspects;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        o->probe_mm[i] = st->ir_mm[i];
+    }
+    o->phase = PH_PROBE;
+}
+
+/* The S forward from a wall beside nearer than the rangers measure would
+ * stop on the tick it begins: the floor ahead, as read, too short for it.
+ * The tries would be spent standing, and the sweep turn where it stands.
+ * A front ranger reading within the fold-back span may be a wall ahead
+ * nearer than read, within the front corners' turning circle (fresh
+ * +-2.5 cm start seed 1390: the centre ranger 54 mm off a wall across
+ * ahead, read 106 mm; the sweep's turn put the front corner on it). So
+ * first the probe, backward (slowly, PROBE_MM, the wall beside along it);
+ * a ranger it finds folded back: straight back FRONT_FOLD_MOVE_MM more
+ * (LEG_BACK_S's move, the wall beside along it). A wall read as it is:
+ * back where it stood, and the tries go as before. 1 when a move began */
+static int unfold_front(ffr_state_t *st)
+{
+    ffr_home_orient_t *o = &st->orient;
+    const ffr_config_t *cfg = &st->cfg;
+    uint8_t front = front_beams(st);
+    uint8_t sus = (uint8_t)(ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_FOLD_MAX_MM) & front & ~o->trusted);
+    float room = end_room(st, 1, BAND_MARGIN_MM, along_skip(st)) - cfg->body_front_mm - ESCAPE_FREE_MM;
+    if ((o->folded & front) != 0u) {
+        if (room < FRONT_FOLD_MOVE_MM) {
+            return 0;
+        }
+        o->folded &= (uint8_t)~front;
+        straight_leg(st, FRONT_FOLD_MOVE_MM, 1u, LEG_BACK_S);
+        return 1;
+    }
+    if (sus == 0u || o->probe_done || room < PROBE_MM || o->escapes >= ESCAPE_TRIES) {
+        return 0; /* on the last try: no try would be left for the move back */
+    }
+    start_probe(st, sus, 1u);
+    o->leg = LEG_BACK_S; /* the probe's way out: the wall beside along it (escape_free) */
+    return 1;
+}
+
 static int clear_step(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -1397,18 +1461,13 @@ static int clear_step(ffr_state_t *st)
     } else if (!o->probe_done) {
         /* near only if a reading is folded back: a probe tells which first
          * (once per look: away from the nearest such wall) */
-        o->probe_done = 1u;
-        o->reverse = (uint8_t)ffr_orient_probe_back(&st->ir_geom, suspects);
-        o->target_rad = 0.0f;
-        o->goal_mm = st->odo.dist_mm + PROBE_MM;
-        o->probed = suspects;
-        for (i = 0; i < FFR_IR_COUNT; ++i) {
-            o->probe_mm[i] = st->ir_mm[i];
-        }
-        o->phase = PH_PROBE;
+        start_probe(st, suspects, (uint8_t)ffr_orient_probe_back(&st->ir_geom, suspects));
         return 0;
     }
     start_escape(st, need, d, nx, ny);
+    if (o->phase == PH_PROBE) {
+        return 0; /* unfold_front's probe */
+    }
     if (FFR_HOME_FOLD_MM <= 0.0f) {
         /* toward the wall a fold move left (backing: the rear move's; forward:
          * the front move's): its rangers read again */
@@ -1643,10 +1702,10 @@ static int escape_free(const ffr_state_t *st)
             return 0;
         }
     }
-    /* back_for_s's move: the wall beside, at its span's bottom, is along the
-     * move, no end of it */
-    if (end_room(st, o->reverse & 1u, band,
-                 o->leg == LEG_BACK_S ? (uint8_t)(beside_skip(st, 1.0f) | beside_skip(st, -1.0f)) : 0u) > need) {
+    /* back_for_s's move (and unfold_front's, and its probe's both ways):
+     * the wall beside, at its span's bottom, is along the move, no end of it */
+    if (end_room(st, o->reverse & 1u, band, o->leg == LEG_BACK_S || o->leg == LEG_ALONG_RETURN ? along_skip(st) : 0u) >
+        need) {
         return 1;
     }
     /* forward on the S's first arc: the wall beside read at the span's

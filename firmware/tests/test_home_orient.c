@@ -1931,27 +1931,42 @@ typedef struct {
     float first_rad; /* the first escape's curvature (target_rad, 1/mm)         */
     int soft_arcs;  /* on LEG_SOFT's ticks: bit 0 driven at 1/ESCAPE_SOFT_MM
                        (600 mm), bit 1 at 1/300 mm, as commanded              */
+    int probed_back; /* a probe backward (PH_PROBE) began                       */
+    float x_min;    /* how far back it went before the sweep (odometry x)       */
+    float probe_end_x; /* where the last probe ended (odometry x)               */
 } orient_run_t;
 
-/* The whole firmware orienting among the walls of `box` (box_readings)
- * from the origin heading 0 until it leaves ORIENT (or 1500 ticks) */
-static orient_run_t orient_run(const ffr_config_t *cfg, const float box[][3], int walls)
+/* The whole firmware orienting among the walls of `box` from the origin
+ * heading 0 until it leaves ORIENT (or 1500 ticks): the rangers read as
+ * box_readings, or folded back below their span (folded_mm) */
+static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3], int walls, int folded)
 {
     rig_t r;
     float ir[FFR_IR_COUNT];
-    orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0};
-    int i;
+    orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0.0f, 0.0f};
+    int i, j, swept = 0, probing = 0;
     rig_init(&r, cfg);
     r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
     r.in.start = 1;
     for (i = 0; i < 1500; ++i) {
         const ffr_home_orient_t *o = &r.st.orient;
         box_readings(cfg, box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+        for (j = 0; folded && j < FFR_IR_COUNT; ++j) {
+            float t = box_beam_mm(cfg, box, walls, j, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
+            ir[j] = t > cfg->ir_max_mm ? ir[j] : folded_mm(cfg, t);
+        }
         feed(&r, cfg, ir);
         rig_tick(&r);
         if (r.out.state != FFR_ST_ORIENT && i > 2) {
             break;
         }
+        run.probed_back |= o->phase == 9u && o->reverse; /* PH_PROBE */
+        if (probing && o->phase != 9u) {
+            run.probe_end_x = r.st.odo.x_mm;
+        }
+        probing = o->phase == 9u;
+        swept |= i > 0 && o->phase == 0u; /* PH_SWEEP */
+        run.x_min = !swept && r.st.odo.x_mm < run.x_min ? r.st.odo.x_mm : run.x_min;
         if (run.first_leg < 0 && o->escapes > 0u) {
             run.first_leg = o->leg;
             run.first_back = o->reverse && o->target_rad == 0.0f;
@@ -1966,6 +1981,11 @@ static orient_run_t orient_run(const ffr_config_t *cfg, const float box[][3], in
         run.clear &= box_clear(box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
     }
     return run;
+}
+
+static orient_run_t orient_run(const ffr_config_t *cfg, const float box[][3], int walls)
+{
+    return orient_run_read(cfg, box, walls, 0);
 }
 
 /* orient_run: 1 if the body never met a wall; *s_forward: whether an S
@@ -2211,6 +2231,54 @@ TEST(an_s_short_of_floor_ahead_backs_straight_first_with_a_far_wall_behind)
         run = orient_run(&cfg, b, 2);
         CHECK((run.first_leg == 1 || run.first_leg == 9) && !run.backed_s); /* the S's first arc */
     }
+}
+
+/* A wall across ahead at 77 degrees to the heading, the front left corner
+ * 5-9 mm off it, and a wall beside on the left converging behind at 13
+ * degrees, the rear left corner ~50 mm off: the body wedged in a corner
+ * (fresh +-2.5 cm start seed 1390: 11 mm, the wall beside 12 mm farther,
+ * its rear part reading short). Read folded back (folded_mm): the centre
+ * ranger, 52-55 mm off the wall ahead, reads within the fold-back span,
+ * the left pair at their span's bottom, a wall beside as read. The S
+ * forward away from it has no floor ahead as read and would stop on the
+ * tick it begins: on main's build the four tries were spent standing and
+ * the sweep's turn put the front left corner on the wall ahead. Now the
+ * probe backward finds the centre ranger folded back, the robot backs on,
+ * and the orientation ends with no contact. */
+TEST(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first)
+{
+    ffr_config_t cfg;
+    float gap;
+    ffr_config_default(&cfg);
+    for (gap = 5.0f; gap <= 9.0f; gap += 1.0f) {
+        const float c = 0.9755f, s = 0.2198f; /* cos, sin 12.7 degrees */
+        const float ahead = c * cfg.body_front_mm + s * cfg.body_half_width_mm + gap;
+        const float b[2][3] = {{c, s, ahead}, {-s, c, 170.0f}};
+        orient_run_t run = orient_run_read(&cfg, b, 2, 1);
+        CHECK(run.clear);
+        CHECK(run.probed_back && run.backed_s);
+        CHECK(run.x_min < -15.0f - 10.0f); /* backed on past the probe's 15 mm */
+    }
+}
+
+/* The same S forward with no floor ahead as read, the centre ranger
+ * reading a wall square ahead as it is, within the fold-back span (130
+ * mm), the left pair at their span's bottom on a wall along the side 25 mm
+ * off: the probe backward finds the reading grown, as a wall that far, and
+ * the robot returns to where it stood; no move back follows (the tries go
+ * as before, standing: with the wall beside that near the sweep's turn
+ * then meets it, as on main's build) */
+TEST(a_wall_ahead_read_as_it_is_gets_the_probe_and_no_move_back)
+{
+    static const float b[2][3] = {{1.0f, 0.0f, 230.0f}, {0.0f, 1.0f, 125.0f}};
+    ffr_config_t cfg;
+    orient_run_t run;
+    ffr_config_default(&cfg);
+    run = orient_run_read(&cfg, b, 2, 1);
+    CHECK(run.probed_back);
+    CHECK(!run.backed_s);
+    CHECK(run.x_min > -15.0f - 5.0f); /* no farther than the probe's 15 mm */
+    CHECK(ffr_absf(run.probe_end_x) < 3.0f); /* and back where it stood */
 }
 
 /* The body along a wall 7-12 mm off its left side, parallel to it, in a
@@ -2540,6 +2608,8 @@ SUITE(home_orient,
       TEST_REF(a_line_across_a_corner_with_no_floor_for_the_s_is_no_wall_beside),
       TEST_REF(a_wall_beside_with_little_floor_ahead_still_gets_the_s),
       TEST_REF(an_s_short_of_floor_ahead_backs_straight_first_with_a_far_wall_behind),
+      TEST_REF(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first),
+      TEST_REF(a_wall_ahead_read_as_it_is_gets_the_probe_and_no_move_back),
       TEST_REF(a_body_along_a_wall_leaves_it_by_an_s_begun_gently),
       TEST_REF(a_fold_move_forward_turns_back_when_its_front_ranger_reads_longer),
       TEST_REF(a_fold_move_turned_back_goes_as_far_as_it_came_and_tells_fold_back),
