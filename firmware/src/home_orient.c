@@ -124,7 +124,8 @@
 #define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
 #define BESIDE_REAR_MM 30.0f      /* a rear ranger this far above its span's bottom: the wall beside */
 #define LEG_PROBE_RETURN 4u       /* the probe's way back to where it stood (nothing folded back) */
-#define LEG_ALONG_RETURN 10u      /* the same for unfold_front's probe: the wall beside along it */
+#define LEG_ALONG_RETURN 10u      /* the same for unfold_front's probe, retracing its way */
+#define LEG_ALONG 11u             /* unfold_front's moves back (its probe, the move after): the wall beside along them */
 #define LEG_BACK 5u               /* the escape's leg: straight back, the front shut */
 #define LEG_FOLD 6u               /* the escape's leg: a fold move, straight (rear: forward; front: back) */
 #define LEG_TURNED 7u             /* the escape's leg: a fold move forward turned back (lead_grew) */
@@ -911,12 +912,18 @@ void ffr_orient_begin(ffr_state_t *st)
 static float end_room(const ffr_state_t *st, int backward, float band, uint8_t skip);
 static float straight_room(const ffr_state_t *st, int backward);
 static uint8_t beside_skip(const ffr_state_t *st, float side);
+static uint8_t beside_skip_within(const ffr_state_t *st, float side, float front_mm);
 static int line_reading(const ffr_config_t *cfg, float d);
-/* both sides' walls beside at the span's bottom (beside_skip): along a straight move */
-static uint8_t along_skip(const ffr_state_t *st) { return (uint8_t)(beside_skip(st, 1.0f) | beside_skip(st, -1.0f)); }
+/* both sides' walls beside at the span's bottom (beside_skip): along a
+ * straight move; `front_mm`: how far above its bottom the front one may
+ * read (0.5: at it) */
+static uint8_t along_skip(const ffr_state_t *st, float front_mm)
+{
+    return (uint8_t)(beside_skip_within(st, 1.0f, front_mm) | beside_skip_within(st, -1.0f, front_mm));
+}
 static int escape_free(const ffr_state_t *st);
 static uint8_t front_beams(const ffr_state_t *st);
-static int unfold_front(ffr_state_t *st);
+static int unfold_front(ffr_state_t *st, uint8_t after_probe);
 
 /* An S of arcs of radius r that ends lat mm farther from the wall: each
  * arc's angle (2 r (1 - cos a) = lat) */
@@ -1074,7 +1081,9 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
         uint8_t skip = beside_skip(st, ny);
         float front = end_room(st, 0, ARC_BAND_MM, 0u);
         float front_beside = end_room(st, 0, ARC_BAND_MM, skip);
-        uint8_t was_back = o->leg == LEG_BACK || o->leg == LEG_BACK_S;
+        uint8_t was_back = o->leg == LEG_BACK || o->leg == LEG_BACK_S || o->leg == LEG_ALONG;
+        /* unfold_front's probe has just found a front ranger folded back */
+        uint8_t after_probe = (uint8_t)(o->leg == LEG_ALONG && (o->folded & front_beams(st)) != 0u);
         int shut;
         if (front_beside > s_room(&st->cfg, ESCAPE_RADIUS_MM, a)) {
             front = front_beside;
@@ -1143,7 +1152,7 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
              * tick spends the try standing */
             o->phase = PH_ESCAPE;
             ffr_orient_watch_leg(st);
-            if (!escape_free(st) && unfold_front(st)) {
+            if (!escape_free(st) && unfold_front(st, after_probe)) {
                 return;
             }
         }
@@ -1246,8 +1255,10 @@ static void probe_step(ffr_state_t *st)
     float left = o->goal_mm - st->odo.dist_mm;
     if (o->leg == LEG_PROBE_RETURN || o->leg == LEG_ALONG_RETURN) {
         /* nothing folded back: back to where it stood (the sweep from there
-         * sees what it would have seen without the probe) */
-        if (left > 0.0f && escape_free(st)) {
+         * sees what it would have seen without the probe). unfold_front's
+         * retraces the floor the body has just left: no look at the room
+         * (the floor ahead as read is short there, or it would not probe) */
+        if (left > 0.0f && (o->leg == LEG_ALONG_RETURN || escape_free(st))) {
             float v = ffr_stopping_speed(left, PROBE_SPEED_MM_S);
             st->cmd_v_mm_s = o->reverse ? -v : v;
             return;
@@ -1273,7 +1284,7 @@ static void probe_step(ffr_state_t *st)
     o->probed = 0u;
     o->phase = PH_CLEAR;
     if (folded == 0u) {
-        o->leg = o->leg == LEG_BACK_S ? LEG_ALONG_RETURN : LEG_PROBE_RETURN;
+        o->leg = o->leg == LEG_ALONG ? LEG_ALONG_RETURN : LEG_PROBE_RETURN;
         o->reverse ^= 1u;
         o->goal_mm = st->odo.dist_mm + (PROBE_MM - left);
         o->phase = PH_PROBE;
@@ -1372,30 +1383,34 @@ static void start_probe(ffr_state_t *st, uint8_t suspects, uint8_t backward)
  * nearer than read, within the front corners' turning circle (fresh
  * +-2.5 cm start seed 1390: the centre ranger 54 mm off a wall across
  * ahead, read 106 mm; the sweep's turn put the front corner on it). So
- * first the probe, backward (slowly, PROBE_MM, the wall beside along it);
- * a ranger it finds folded back: straight back FRONT_FOLD_MOVE_MM more
- * (LEG_BACK_S's move, the wall beside along it). A wall read as it is:
- * back where it stood, and the tries go as before. 1 when a move began */
-static int unfold_front(ffr_state_t *st)
+ * first the probe, backward (slowly, PROBE_MM), watched with the wall
+ * beside skipped while its side's rangers read within BESIDE_REAR_MM of
+ * their bottom (LEG_ALONG: backing along it, the front one's reading
+ * grows a little). A ranger it finds folded back (after_probe): straight
+ * back FRONT_FOLD_MOVE_MM more, watched alike. A wall read as it is: back
+ * where it stood (LEG_ALONG_RETURN), and the tries go on as before. The
+ * probe takes a try; not on the last one, which would leave none for the
+ * move back. 1 when a move began */
+static int unfold_front(ffr_state_t *st, uint8_t after_probe)
 {
     ffr_home_orient_t *o = &st->orient;
     const ffr_config_t *cfg = &st->cfg;
     uint8_t front = front_beams(st);
     uint8_t sus = (uint8_t)(ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_FOLD_MAX_MM) & front & ~o->trusted);
-    float room = end_room(st, 1, BAND_MARGIN_MM, along_skip(st)) - cfg->body_front_mm - ESCAPE_FREE_MM;
-    if ((o->folded & front) != 0u) {
+    float room = end_room(st, 1, BAND_MARGIN_MM, along_skip(st, BESIDE_REAR_MM)) - cfg->body_front_mm - ESCAPE_FREE_MM;
+    if (after_probe) {
         if (room < FRONT_FOLD_MOVE_MM) {
             return 0;
         }
         o->folded &= (uint8_t)~front;
-        straight_leg(st, FRONT_FOLD_MOVE_MM, 1u, LEG_BACK_S);
+        straight_leg(st, FRONT_FOLD_MOVE_MM, 1u, LEG_ALONG);
         return 1;
     }
     if (sus == 0u || o->probe_done || room < PROBE_MM || o->escapes >= ESCAPE_TRIES) {
         return 0; /* on the last try: no try would be left for the move back */
     }
     start_probe(st, sus, 1u);
-    o->leg = LEG_BACK_S; /* the probe's way out: the wall beside along it (escape_free) */
+    o->leg = LEG_ALONG;
     return 1;
 }
 
@@ -1474,7 +1489,7 @@ static int clear_step(ffr_state_t *st)
         o->folded &= (uint8_t)~(o->reverse ? rear_beams(st) : front_beams(st));
     }
     /* the rangers this move goes away from: their readings tell fold-back */
-    if (o->leg == 0u || o->leg == LEG_BACK || o->leg == LEG_BACK_S) {
+    if (o->leg == 0u || o->leg == LEG_BACK || o->leg == LEG_BACK_S || o->leg == LEG_ALONG) {
         mx = o->reverse ? -1.0f : 1.0f;
         my = 0.0f;
     } else {
@@ -1538,14 +1553,16 @@ static float straight_room(const ffr_state_t *st, int backward)
  * body's path band at both ends and shut both (the escape could not move;
  * the sweep then swung a corner into the wall). The centre ranger still
  * looks ahead, the other side's rangers at their corners. */
-static uint8_t beside_skip(const ffr_state_t *st, float side)
+static uint8_t beside_skip(const ffr_state_t *st, float side) { return beside_skip_within(st, side, 0.5f); }
+
+/* the same, the front one reading up to front_mm above its span's bottom */
+static uint8_t beside_skip_within(const ffr_state_t *st, float side, float front_mm)
 {
     uint8_t m = 0u;
     int i;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         if (st->ir_geom.beam_sin[i] * side > 0.5f) {
-            if (st->ir_mm[i] > st->cfg.ir_min_mm + 0.5f &&
-                (st->ir_geom.beam_cos[i] > 0.0f || st->ir_mm[i] > st->cfg.ir_min_mm + BESIDE_REAR_MM)) {
+            if (st->ir_mm[i] > st->cfg.ir_min_mm + (st->ir_geom.beam_cos[i] > 0.0f ? front_mm : BESIDE_REAR_MM)) {
                 return 0u; /* not both: the other may be a wall's end at a corner */
             }
             m = (uint8_t)(m | (1 << i));
@@ -1702,10 +1719,11 @@ static int escape_free(const ffr_state_t *st)
             return 0;
         }
     }
-    /* back_for_s's move (and unfold_front's, and its probe's both ways):
-     * the wall beside, at its span's bottom, is along the move, no end of it */
-    if (end_room(st, o->reverse & 1u, band, o->leg == LEG_BACK_S || o->leg == LEG_ALONG_RETURN ? along_skip(st) : 0u) >
-        need) {
+    /* back_for_s's move and unfold_front's: the wall beside, at its span's
+     * bottom (unfold_front's: near it), is along the move, no end of it */
+    if (end_room(st, o->reverse & 1u, band,
+                 o->leg == LEG_BACK_S ? along_skip(st, 0.5f)
+                                      : (o->leg == LEG_ALONG ? along_skip(st, BESIDE_REAR_MM) : 0u)) > need) {
         return 1;
     }
     /* forward on the S's first arc: the wall beside read at the span's

@@ -1932,6 +1932,7 @@ typedef struct {
     int soft_arcs;  /* on LEG_SOFT's ticks: bit 0 driven at 1/ESCAPE_SOFT_MM
                        (600 mm), bit 1 at 1/300 mm, as commanded              */
     int probed_back; /* a probe backward (PH_PROBE) began                       */
+    int unfolded;   /* unfold_front's move back after its probe (LEG_ALONG) began */
     float x_min;    /* how far back it went before the sweep (odometry x)       */
     float probe_end_x; /* where the last probe ended (odometry x)               */
 } orient_run_t;
@@ -1943,7 +1944,7 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
 {
     rig_t r;
     float ir[FFR_IR_COUNT];
-    orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0.0f, 0.0f};
+    orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0, 0.0f, 0.0f};
     int i, j, swept = 0, probing = 0;
     rig_init(&r, cfg);
     r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
@@ -1960,7 +1961,8 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
         if (r.out.state != FFR_ST_ORIENT && i > 2) {
             break;
         }
-        run.probed_back |= o->phase == 9u && o->reverse; /* PH_PROBE */
+        run.probed_back |= o->phase == 9u && o->reverse;  /* PH_PROBE */
+        run.unfolded |= o->phase == 8u && o->leg == 11u; /* PH_ESCAPE, LEG_ALONG */
         if (probing && o->phase != 9u) {
             run.probe_end_x = r.st.odo.x_mm;
         }
@@ -2238,13 +2240,16 @@ TEST(an_s_short_of_floor_ahead_backs_straight_first_with_a_far_wall_behind)
  * degrees, the rear left corner ~50 mm off: the body wedged in a corner
  * (fresh +-2.5 cm start seed 1390: 11 mm, the wall beside 12 mm farther,
  * its rear part reading short). Read folded back (folded_mm): the centre
- * ranger, 52-55 mm off the wall ahead, reads within the fold-back span,
+ * ranger, 48-52 mm off the wall ahead, reads within the fold-back span,
  * the left pair at their span's bottom, a wall beside as read. The S
  * forward away from it has no floor ahead as read and would stop on the
  * tick it begins: on main's build the four tries were spent standing and
  * the sweep's turn put the front left corner on the wall ahead. Now the
- * probe backward finds the centre ranger folded back, the robot backs on,
- * and the orientation ends with no contact. */
+ * probe backward finds the centre ranger folded back, the robot backs on
+ * its whole 30 mm (backing along the wall beside, the left front ranger's
+ * reading grows a few mm: still the wall beside), and the orientation ends
+ * with no contact. On the last of the four tries: no probe (no try would
+ * be left for the move back). */
 TEST(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first)
 {
     ffr_config_t cfg;
@@ -2255,9 +2260,27 @@ TEST(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first)
         const float ahead = c * cfg.body_front_mm + s * cfg.body_half_width_mm + gap;
         const float b[2][3] = {{c, s, ahead}, {-s, c, 170.0f}};
         orient_run_t run = orient_run_read(&cfg, b, 2, 1);
+        rig_t r;
+        float ir[FFR_IR_COUNT];
+        int i;
         CHECK(run.clear);
-        CHECK(run.probed_back && run.backed_s);
-        CHECK(run.x_min < -15.0f - 10.0f); /* backed on past the probe's 15 mm */
+        CHECK(run.probed_back && run.unfolded);
+        CHECK(run.x_min < -15.0f - 27.0f); /* backed on past the probe's 15 mm, by the whole 30 */
+        /* the same first look with three tries spent: the last one stands */
+        rig_init(&r, &cfg);
+        r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
+        box_readings(&cfg, b, 2, 0.0f, 0.0f, 0.0f, ir);
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            float t = box_beam_mm(&cfg, b, 2, i, 0.0f, 0.0f, 0.0f);
+            ir[i] = t > cfg.ir_max_mm ? ir[i] : folded_mm(&cfg, t);
+        }
+        feed(&r, &cfg, ir);
+        rig_tick(&r); /* the readings in */
+        ffr_orient_begin(&r.st);
+        r.st.orient.escapes = 3u;
+        r.st.started = 1;
+        rig_tick(&r);
+        CHECK(r.st.orient.escapes == 4u && r.st.orient.phase != 9u); /* not PH_PROBE */
     }
 }
 
@@ -2267,10 +2290,19 @@ TEST(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first)
  * off: the probe backward finds the reading grown, as a wall that far, and
  * the robot returns to where it stood; no move back follows (the tries go
  * as before, standing: with the wall beside that near the sweep's turn
- * then meets it, as on main's build) */
+ * then meets it, as on main's build). The way back retraces the floor the
+ * body has just left, with no look at the room: in a corner ahead-left
+ * with a wall behind-left (the left rear ranger reading it at its bottom,
+ * the pair taken for a wall beside), the probe's 15 mm back brings that
+ * reading up into the fold-back span, the wall beside is no longer
+ * skipped and its hit shuts the floor ahead as read; a return that looked
+ * stopped there, and the next move backed into the wall behind (found in
+ * review). It returns, and the orientation ends with no contact. */
 TEST(a_wall_ahead_read_as_it_is_gets_the_probe_and_no_move_back)
 {
     static const float b[2][3] = {{1.0f, 0.0f, 230.0f}, {0.0f, 1.0f, 125.0f}};
+    static const float corner[3][3] = {
+        {0.8940f, 0.4480f, 207.6f}, {0.2321f, 0.9727f, 156.0f}, {-0.8620f, 0.5069f, 159.8f}};
     ffr_config_t cfg;
     orient_run_t run;
     ffr_config_default(&cfg);
@@ -2279,6 +2311,10 @@ TEST(a_wall_ahead_read_as_it_is_gets_the_probe_and_no_move_back)
     CHECK(!run.backed_s);
     CHECK(run.x_min > -15.0f - 5.0f); /* no farther than the probe's 15 mm */
     CHECK(ffr_absf(run.probe_end_x) < 3.0f); /* and back where it stood */
+    run = orient_run_read(&cfg, corner, 3, 1);
+    CHECK(run.probed_back && !run.unfolded);
+    CHECK(ffr_absf(run.probe_end_x) < 3.0f);
+    CHECK(run.clear);
 }
 
 /* The body along a wall 7-12 mm off its left side, parallel to it, in a
