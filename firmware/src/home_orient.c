@@ -1253,11 +1253,22 @@ static void probe_step(ffr_state_t *st)
     ffr_home_orient_t *o = &st->orient;
     uint8_t genuine = 0u, folded = 0u, ahead;
     float left = o->goal_mm - st->odo.dist_mm;
+    uint8_t along = (uint8_t)(o->leg == LEG_ALONG || o->leg == LEG_ALONG_RETURN);
+    if (along) {
+        /* unfold_front's probe counts the body's net travel along its axis
+         * since it began (leg_mm, signed), not path length: it may begin
+         * with the body still rolling on from the move before (an S cut
+         * short), and that roll would count toward its 15 mm. goal_mm
+         * bounds each leg's path length as well */
+        o->leg_mm += 0.5f * (st->odo.dpos_mm[0] + st->odo.dpos_mm[1]);
+        left = left > 0.0f ? (o->leg == LEG_ALONG ? PROBE_MM + o->leg_mm : -o->leg_mm) : 0.0f;
+    }
     if (o->leg == LEG_PROBE_RETURN || o->leg == LEG_ALONG_RETURN) {
         /* nothing folded back: back to where it stood (the sweep from there
          * sees what it would have seen without the probe). unfold_front's
-         * retraces the floor the body has just left: no look at the room
-         * (the floor ahead as read is short there, or it would not probe) */
+         * goes back over the floor it has just left, to where it began: no
+         * look at the room (the floor ahead as read is short there, or it
+         * would not have probed) */
         if (left > 0.0f && (o->leg == LEG_ALONG_RETURN || escape_free(st))) {
             float v = ffr_stopping_speed(left, PROBE_SPEED_MM_S);
             st->cmd_v_mm_s = o->reverse ? -v : v;
@@ -1284,9 +1295,9 @@ static void probe_step(ffr_state_t *st)
     o->probed = 0u;
     o->phase = PH_CLEAR;
     if (folded == 0u) {
-        o->leg = o->leg == LEG_ALONG ? LEG_ALONG_RETURN : LEG_PROBE_RETURN;
+        o->leg = along ? LEG_ALONG_RETURN : LEG_PROBE_RETURN;
         o->reverse ^= 1u;
-        o->goal_mm = st->odo.dist_mm + (PROBE_MM - left);
+        o->goal_mm = st->odo.dist_mm + (along ? 2.0f * PROBE_MM : PROBE_MM - left);
         o->phase = PH_PROBE;
     }
 }
@@ -1411,6 +1422,8 @@ static int unfold_front(ffr_state_t *st, uint8_t after_probe)
     }
     start_probe(st, sus, 1u);
     o->leg = LEG_ALONG;
+    o->leg_mm = 0.0f; /* its net travel (probe_step) */
+    o->goal_mm = st->odo.dist_mm + 3.0f * PROBE_MM; /* and a bound on its path */
     return 1;
 }
 

@@ -1934,17 +1934,19 @@ typedef struct {
     int probed_back; /* a probe backward (PH_PROBE) began                       */
     int unfolded;   /* unfold_front's move back after its probe (LEG_ALONG) began */
     float x_min;    /* how far back it went before the sweep (odometry x)       */
+    float probe_start_x; /* where the first probe began (odometry x)            */
     float probe_end_x; /* where the last probe ended (odometry x)               */
 } orient_run_t;
 
 /* The whole firmware orienting among the walls of `box` from the origin
  * heading 0 until it leaves ORIENT (or 1500 ticks): the rangers read as
- * box_readings, or folded back below their span (folded_mm) */
-static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3], int walls, int folded)
+ * box_readings, or folded back below their span (folded_mm); the wheels
+ * rolling forward at v0 mm/s at first (a move before cut short) */
+static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3], int walls, int folded, float v0)
 {
     rig_t r;
     float ir[FFR_IR_COUNT];
-    orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0, 0.0f, 0.0f};
+    orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0, 0.0f, 0.0f, 0.0f};
     int i, j, swept = 0, probing = 0;
     rig_init(&r, cfg);
     r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
@@ -1957,9 +1959,16 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
             ir[j] = t > cfg->ir_max_mm ? ir[j] : folded_mm(cfg, t);
         }
         feed(&r, cfg, ir);
+        if (i == 0) {
+            r.st.speed.v_ref[0] = v0;
+            r.st.speed.v_ref[1] = v0;
+        }
         rig_tick(&r);
         if (r.out.state != FFR_ST_ORIENT && i > 2) {
             break;
+        }
+        if (!run.probed_back && o->phase == 9u) {
+            run.probe_start_x = r.st.odo.x_mm;
         }
         run.probed_back |= o->phase == 9u && o->reverse;  /* PH_PROBE */
         run.unfolded |= o->phase == 8u && o->leg == 11u; /* PH_ESCAPE, LEG_ALONG */
@@ -1987,7 +1996,7 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
 
 static orient_run_t orient_run(const ffr_config_t *cfg, const float box[][3], int walls)
 {
-    return orient_run_read(cfg, box, walls, 0);
+    return orient_run_read(cfg, box, walls, 0, 0.0f);
 }
 
 /* orient_run: 1 if the body never met a wall; *s_forward: whether an S
@@ -2259,7 +2268,7 @@ TEST(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first)
         const float c = 0.9755f, s = 0.2198f; /* cos, sin 12.7 degrees */
         const float ahead = c * cfg.body_front_mm + s * cfg.body_half_width_mm + gap;
         const float b[2][3] = {{c, s, ahead}, {-s, c, 170.0f}};
-        orient_run_t run = orient_run_read(&cfg, b, 2, 1);
+        orient_run_t run = orient_run_read(&cfg, b, 2, 1, 0.0f);
         rig_t r;
         float ir[FFR_IR_COUNT];
         int i;
@@ -2281,6 +2290,15 @@ TEST(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first)
         r.st.started = 1;
         rig_tick(&r);
         CHECK(r.st.orient.escapes == 4u && r.st.orient.phase != 9u); /* not PH_PROBE */
+        /* the centre ranger known folded back from another move (as a
+         * front fold move leaves it), the probe done: no move back follows
+         * the refused S (only unfold_front's own probe's finding starts it) */
+        ffr_orient_begin(&r.st);
+        r.st.orient.escapes = 1u;
+        r.st.orient.probe_done = 1u;
+        r.st.orient.folded = (uint8_t)(1u << FFR_IR_CF);
+        rig_tick(&r);
+        CHECK(r.st.orient.escapes == 2u && r.st.orient.leg != 11u); /* not LEG_ALONG */
     }
 }
 
@@ -2305,16 +2323,25 @@ TEST(a_wall_ahead_read_as_it_is_gets_the_probe_and_no_move_back)
         {0.8940f, 0.4480f, 207.6f}, {0.2321f, 0.9727f, 156.0f}, {-0.8620f, 0.5069f, 159.8f}};
     ffr_config_t cfg;
     orient_run_t run;
+    float v0;
     ffr_config_default(&cfg);
-    run = orient_run_read(&cfg, b, 2, 1);
+    run = orient_run_read(&cfg, b, 2, 1, 0.0f);
     CHECK(run.probed_back);
     CHECK(!run.backed_s);
     CHECK(run.x_min > -15.0f - 5.0f); /* no farther than the probe's 15 mm */
     CHECK(ffr_absf(run.probe_end_x) < 3.0f); /* and back where it stood */
-    run = orient_run_read(&cfg, corner, 3, 1);
+    run = orient_run_read(&cfg, corner, 3, 1, 0.0f);
     CHECK(run.probed_back && !run.unfolded);
     CHECK(ffr_absf(run.probe_end_x) < 3.0f);
     CHECK(run.clear);
+    /* begun with the body still rolling forward (an S cut short before):
+     * the 15 mm are net travel, and the way back ends where it began, not
+     * the roll's length beyond (found in review: 14.7 mm at 120 mm/s) */
+    for (v0 = 40.0f; v0 <= 120.0f; v0 += 40.0f) {
+        run = orient_run_read(&cfg, b, 2, 1, v0);
+        CHECK(run.probed_back && !run.unfolded);
+        CHECK(ffr_absf(run.probe_end_x - run.probe_start_x) < 3.0f);
+    }
 }
 
 /* The body along a wall 7-12 mm off its left side, parallel to it, in a
