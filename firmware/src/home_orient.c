@@ -910,7 +910,7 @@ void ffr_orient_begin(ffr_state_t *st)
  * the front is free, else backward). 1 when there is room (or the moves are
  * spent): the sweep begins here. */
 static float end_room(const ffr_state_t *st, int backward, float band, uint8_t skip);
-static float straight_room(const ffr_state_t *st, int backward);
+static float straight_room(const ffr_state_t *st, int backward, uint8_t skip);
 static uint8_t beside_skip(const ffr_state_t *st, float side);
 static uint8_t beside_skip_within(const ffr_state_t *st, float side, float front_mm);
 static int line_reading(const ffr_config_t *cfg, float d);
@@ -923,7 +923,7 @@ static uint8_t along_skip(const ffr_state_t *st, float front_mm)
 }
 static int escape_free(const ffr_state_t *st);
 static uint8_t front_beams(const ffr_state_t *st);
-static int unfold_front(ffr_state_t *st, uint8_t after_probe);
+static int unfold_front(ffr_state_t *st, uint8_t was_along);
 
 /* An S of arcs of radius r that ends lat mm farther from the wall: each
  * arc's angle (2 r (1 - cos a) = lat) */
@@ -1002,7 +1002,7 @@ static int back_for_s(ffr_state_t *st, float ny, uint8_t skip, float front_besid
     const ffr_config_t *cfg = &st->cfg;
     float want = s_room(cfg, r, a) - front_beside + 10.0f;
     float wide = s_room(cfg, ESCAPE_WIDE_MM, s_angle(lat, ESCAPE_WIDE_MM)) - front_beside + 10.0f;
-    float behind = end_room(st, 1, BAND_MARGIN_MM, skip) - cfg->body_front_mm - ESCAPE_FREE_MM;
+    float behind = straight_room(st, 1, skip);
     int i, wall_behind = 0;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
         /* the other side's rear ranger */
@@ -1082,8 +1082,7 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
         float front = end_room(st, 0, ARC_BAND_MM, 0u);
         float front_beside = end_room(st, 0, ARC_BAND_MM, skip);
         uint8_t was_back = o->leg == LEG_BACK || o->leg == LEG_BACK_S || o->leg == LEG_ALONG;
-        /* unfold_front's probe has just found a front ranger folded back */
-        uint8_t after_probe = (uint8_t)(o->leg == LEG_ALONG && (o->folded & front_beams(st)) != 0u);
+        uint8_t was_along = o->leg == LEG_ALONG; /* after unfold_front's probe or move */
         int shut;
         if (front_beside > s_room(&st->cfg, ESCAPE_RADIUS_MM, a)) {
             front = front_beside;
@@ -1125,7 +1124,7 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
              * wall behind or diagonally behind, and keeps the body in its
              * own band. Then the look again decides */
             if (o->escapes == 1u &&
-                straight_room(st, 0) > CHORD_STEP_MM) {
+                straight_room(st, 0, 0u) > CHORD_STEP_MM) {
                 straight_leg(st, CHORD_STEP_MM, 0u, 0u);
                 return;
             }
@@ -1148,11 +1147,10 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
             o->goal_mm = st->odo.dist_mm + soft_len(&st->cfg, a, r);
         }
         if (!o->reverse) {
-            /* the S forward as it would begin: one that stops on its first
-             * tick spends the try standing */
-            o->phase = PH_ESCAPE;
-            ffr_orient_watch_leg(st);
-            if (!escape_free(st) && unfold_front(st, after_probe)) {
+            /* the S forward as it would begin (an arc: no slant or chord
+             * watch, so as escape_free asks on its first tick) stops at
+             * once: that try would be spent standing */
+            if (!escape_free(st) && unfold_front(st, was_along)) {
                 return;
             }
         }
@@ -1331,7 +1329,7 @@ static void fold_move(ffr_state_t *st, uint8_t away, float len, uint8_t backward
  * drives toward has room for it (1 when it starts) */
 static int fold_move_if_room(ffr_state_t *st, uint8_t away, float len, uint8_t backward)
 {
-    if (away == 0u || straight_room(st, backward) < len) {
+    if (away == 0u || straight_room(st, backward, 0u) < len) {
         return 0;
     }
     fold_move(st, away, len, backward);
@@ -1397,27 +1395,27 @@ static void start_probe(ffr_state_t *st, uint8_t suspects, uint8_t backward)
  * first the probe, backward (slowly, PROBE_MM), watched with the wall
  * beside skipped while its side's rangers read within BESIDE_REAR_MM of
  * their bottom (LEG_ALONG: backing along it, the front one's reading
- * grows a little). A ranger it finds folded back (after_probe): straight
- * back FRONT_FOLD_MOVE_MM more, watched alike. A wall read as it is: back
+ * grows a little). A front ranger its probe found folded back (was_along:
+ * the leg before was LEG_ALONG): straight back FRONT_FOLD_MOVE_MM more,
+ * watched alike. A wall read as it is: back
  * where it stood (LEG_ALONG_RETURN), and the tries go on as before. The
  * probe takes a try; not on the last one, which would leave none for the
  * move back. 1 when a move began */
-static int unfold_front(ffr_state_t *st, uint8_t after_probe)
+static int unfold_front(ffr_state_t *st, uint8_t was_along)
 {
     ffr_home_orient_t *o = &st->orient;
-    const ffr_config_t *cfg = &st->cfg;
-    uint8_t front = front_beams(st);
-    uint8_t sus = (uint8_t)(ffr_orient_fold_suspects(cfg, st->ir_mm, FFR_FOLD_MAX_MM) & front & ~o->trusted);
-    float room = end_room(st, 1, BAND_MARGIN_MM, along_skip(st, BESIDE_REAR_MM)) - cfg->body_front_mm - ESCAPE_FREE_MM;
-    if (after_probe) {
-        if (room < FRONT_FOLD_MOVE_MM) {
+    uint8_t front = front_beams(st), sus;
+    if (was_along && (o->folded & front) != 0u) {
+        if (straight_room(st, 1, along_skip(st, BESIDE_REAR_MM)) < FRONT_FOLD_MOVE_MM) {
             return 0;
         }
         o->folded &= (uint8_t)~front;
         straight_leg(st, FRONT_FOLD_MOVE_MM, 1u, LEG_ALONG);
         return 1;
     }
-    if (sus == 0u || o->probe_done || room < PROBE_MM || o->escapes >= ESCAPE_TRIES) {
+    sus = (uint8_t)(ffr_orient_fold_suspects(&st->cfg, st->ir_mm, FFR_FOLD_MAX_MM) & front & ~o->trusted);
+    if (sus == 0u || o->probe_done || o->escapes >= ESCAPE_TRIES ||
+        straight_room(st, 1, along_skip(st, BESIDE_REAR_MM)) < PROBE_MM) {
         return 0; /* on the last try: no try would be left for the move back */
     }
     start_probe(st, sus, 1u);
@@ -1545,11 +1543,11 @@ static float end_room(const ffr_state_t *st, int backward, float band, uint8_t s
 }
 
 /* How long a straight move ahead (backward = 0) or behind may be: the free
- * floor in the body's path (end_room, BAND_MARGIN_MM) beyond the body's
- * front and ESCAPE_FREE_MM */
-static float straight_room(const ffr_state_t *st, int backward)
+ * floor in the body's path (end_room, BAND_MARGIN_MM, the rangers `skip`
+ * left out) beyond the body's front and ESCAPE_FREE_MM */
+static float straight_room(const ffr_state_t *st, int backward, uint8_t skip)
 {
-    return end_room(st, backward, BAND_MARGIN_MM, 0u) - st->cfg.body_front_mm - ESCAPE_FREE_MM;
+    return end_room(st, backward, BAND_MARGIN_MM, skip) - st->cfg.body_front_mm - ESCAPE_FREE_MM;
 }
 
 /* The wall beside that a sideways escape moves away from (side: > 0 left,
@@ -1856,7 +1854,7 @@ void ffr_orient_after_shift(ffr_state_t *st)
         /* a shift backward stopped by a rear ranger at its bottom: no
          * measured line to move off, so a short straight move forward */
         back = 0u;
-        len = ffr_clampf(straight_room(st, 0), 0.0f, SHIFT_BOTTOM_MOVE_MM);
+        len = ffr_clampf(straight_room(st, 0, 0u), 0.0f, SHIFT_BOTTOM_MOVE_MM);
     } else {
         return;
     }
@@ -2021,7 +2019,7 @@ static uint8_t rear_passed(ffr_state_t *st)
 static void pass_move(ffr_state_t *st, uint8_t passed)
 {
     ffr_home_orient_t *o = &st->orient;
-    float len = straight_room(st, 0);
+    float len = straight_room(st, 0, 0u);
     ffr_stop(st);
     if (o->phase == PH_SHIFT_DRIVE) {
         o->after_shift = 1u;
@@ -2132,7 +2130,7 @@ static int first_step(ffr_state_t *st, int side)
         }
         open = n > 0 && m > 0;
     }
-    if (!open || straight_room(st, 0) <= HALL_STEP_MM || corner_room(st) < CORNER_FREE_MM + HALL_STEP_MM) {
+    if (!open || straight_room(st, 0, 0u) <= HALL_STEP_MM || corner_room(st) < CORNER_FREE_MM + HALL_STEP_MM) {
         return 0;
     }
     straight_leg(st, HALL_STEP_MM, 0u, 0u);

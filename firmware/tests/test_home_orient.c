@@ -273,6 +273,18 @@ TEST(a_far_wall_across_between_the_bins_places_the_robot)
     CHECK_NEAR(dx, 0.0f, 0.5f);
 }
 
+/* the 2004 home hallway as a sweep from its centre records it (the test
+ * below) */
+static void home_hallway_seen(ffr_home_orient_t *o, ffr_odometry_t *odo)
+{
+    ffr_odometry_reset(odo);
+    ffr_orient_reset(o, odo);
+    add_stretch(o, 360.0f, -800.0f, 360.0f, 800.0f, 1.0f);
+    add_stretch(o, -800.0f, -280.0f, 360.0f, -280.0f, 1.0f);
+    add_stretch(o, -80.0f, 200.0f, -80.0f, 800.0f, 1.0f);
+    add_stretch(o, -800.0f, 200.0f, -80.0f, 200.0f, 1.0f);
+}
+
 TEST(a_far_wall_read_short_does_not_shut_the_way_along_the_hallway)
 {
     /* the 2004 home hallway seen from the sweep's centre: its outer wall
@@ -294,12 +306,7 @@ TEST(a_far_wall_read_short_does_not_shut_the_way_along_the_hallway)
     cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
     for (ahead = 400.0f; ahead <= 560.0f; ahead += 20.0f) {
         int way;
-        ffr_odometry_reset(&odo);
-        ffr_orient_reset(&o, &odo);
-        add_stretch(&o, 360.0f, -800.0f, 360.0f, 800.0f, 1.0f);
-        add_stretch(&o, -800.0f, -280.0f, 360.0f, -280.0f, 1.0f);
-        add_stretch(&o, -80.0f, 200.0f, -80.0f, 800.0f, 1.0f);
-        add_stretch(&o, -800.0f, 200.0f, -80.0f, 200.0f, 1.0f);
+        home_hallway_seen(&o, &odo);
         keep_nearest(&o, 130.0f - 96.0f, ahead);
         way = ffr_orient_choose(&o, &cfg, 0.0f, PI_F, 130.0f, 0.0f);
         CHECK(way == ((1.0f + RANGE_SHORT_FRAC_BUILT) * ahead < 2.0f * cfg.wall_target_mm + cfg.body_half_width_mm
@@ -311,12 +318,7 @@ TEST(a_far_wall_read_short_does_not_shut_the_way_along_the_hallway)
      * centre (440 mm ahead of the robot) may be 675 mm off the centre, 575
      * mm ahead: beyond the reach, north stays the way (grown from the robot,
      * 550 mm, it would shut it) */
-    ffr_odometry_reset(&odo);
-    ffr_orient_reset(&o, &odo);
-    add_stretch(&o, 360.0f, -800.0f, 360.0f, 800.0f, 1.0f);
-    add_stretch(&o, -800.0f, -280.0f, 360.0f, -280.0f, 1.0f);
-    add_stretch(&o, -80.0f, 200.0f, -80.0f, 800.0f, 1.0f);
-    add_stretch(&o, -800.0f, 200.0f, -80.0f, 200.0f, 1.0f);
+    home_hallway_seen(&o, &odo);
     keep_nearest(&o, 130.0f - 96.0f, 540.0f);
     CHECK(ffr_orient_choose(&o, &cfg, 0.0f, PI_F, 130.0f, 100.0f) == 1);
 }
@@ -1760,6 +1762,17 @@ static void box_readings(const ffr_config_t *cfg, const float n[][3], int walls,
     }
 }
 
+/* the same, read folded back below the span (folded_mm) */
+static void box_readings_folded(const ffr_config_t *cfg, const float n[][3], int walls, float x, float y, float th,
+                                float ir[FFR_IR_COUNT])
+{
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        float best = box_beam_mm(cfg, n, walls, i, x, y, th);
+        ir[i] = best > cfg->ir_max_mm ? FFR_IR_NONE(cfg) : folded_mm(cfg, best);
+    }
+}
+
 TEST(a_straight_escape_is_not_refused_by_a_line_across_a_corner)
 {
     /* the rear 30 mm from a wall behind, the left side 50 mm from a wall
@@ -1947,17 +1960,14 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
     rig_t r;
     float ir[FFR_IR_COUNT];
     orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0, 0.0f, 0.0f, 0.0f};
-    int i, j, swept = 0, probing = 0;
+    int i, swept = 0, probing = 0;
     rig_init(&r, cfg);
     r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
     r.in.start = 1;
     for (i = 0; i < 1500; ++i) {
         const ffr_home_orient_t *o = &r.st.orient;
-        box_readings(cfg, box, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
-        for (j = 0; folded && j < FFR_IR_COUNT; ++j) {
-            float t = box_beam_mm(cfg, box, walls, j, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
-            ir[j] = t > cfg->ir_max_mm ? ir[j] : folded_mm(cfg, t);
-        }
+        (folded ? box_readings_folded : box_readings)(cfg, box, walls, r.st.odo.x_mm, r.st.odo.y_mm,
+                                                      r.st.odo.heading_rad, ir);
         feed(&r, cfg, ir);
         if (i == 0) {
             r.st.speed.v_ref[0] = v0;
@@ -2271,18 +2281,13 @@ TEST(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first)
         orient_run_t run = orient_run_read(&cfg, b, 2, 1, 0.0f);
         rig_t r;
         float ir[FFR_IR_COUNT];
-        int i;
         CHECK(run.clear);
         CHECK(run.probed_back && run.unfolded);
         CHECK(run.x_min < -15.0f - 27.0f); /* backed on past the probe's 15 mm, by the whole 30 */
         /* the same first look with three tries spent: the last one stands */
         rig_init(&r, &cfg);
         r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
-        box_readings(&cfg, b, 2, 0.0f, 0.0f, 0.0f, ir);
-        for (i = 0; i < FFR_IR_COUNT; ++i) {
-            float t = box_beam_mm(&cfg, b, 2, i, 0.0f, 0.0f, 0.0f);
-            ir[i] = t > cfg.ir_max_mm ? ir[i] : folded_mm(&cfg, t);
-        }
+        box_readings_folded(&cfg, b, 2, 0.0f, 0.0f, 0.0f, ir);
         feed(&r, &cfg, ir);
         rig_tick(&r); /* the readings in */
         ffr_orient_begin(&r.st);
