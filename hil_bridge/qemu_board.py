@@ -249,7 +249,7 @@ def open_qemu(url: str) -> QemuLink | QemuEthLink:
     simulated_board(opts)
     # an emulated board translates its code on first use: give the start-up more time
     if "handshake_timeout_s" not in opts.given:
-        opts.handshake_timeout_s = 10.0
+        opts.handshake_timeout_s = max(opts.handshake_timeout_s, 10.0)
     spec = MACHINES.get(machine)
     if spec is None:
         raise LinkError(f"--link = {url!r}: unknown emulated board '{machine}', known: {sorted(MACHINES)}")

@@ -27,9 +27,8 @@ from hil_bridge.errors import DecodeError, ErrCode, Status
 from hil_bridge.options import WireOptions
 
 FW_VERSION_MAJOR = CONTRACT_MAJOR  # the firmware contract this harness speaks (FFR_CONTRACT_MAJOR)
-_HANDSHAKE_TRY_S = 0.25  # first wait for INFO / READY (a config is 650 bytes: 60 ms at 115200 baud)
-# A RESET is 82 classic CAN frames: where 2% of frames are lost, one in five gets through whole,
-# so HELLO and RESET may be sent many times; handshake_timeout_s still bounds the wait.
+# HELLO and RESET may be sent many times on a lossy line (options.py, handshake_try_s);
+# handshake_timeout_s still bounds the wait.
 _HANDSHAKE_RETRIES = 50
 
 
@@ -63,7 +62,7 @@ class WireLink(FirmwareLink):
 
     @property
     def _handshake_try_s(self) -> float:
-        return min(_HANDSHAKE_TRY_S, self.opts.timeout_s)  # a lossy line asks for short tries
+        return min(self.opts.handshake_try_s, self.opts.timeout_s)  # a lossy line asks for short tries
 
     # ---- transport ------------------------------------------------------------------------------------------
     @abstractmethod
