@@ -61,6 +61,13 @@ $(BUILD)/host/ffr_unit_tests: $(FW_SRCS) $(FW_TESTS) $(FW_HDRS) firmware/tests/u
 	$(CC) $(CSTD) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -Ifirmware/tests \
 		-o $@ $(FW_SRCS) $(FW_TESTS) -lm
 
+# The same tests with the orientation's fold-back rules built in (FFR_HOME_FOLD_MM, off in
+# the firmware as shipped: ffr_internal.h): the code those rules reach is tested too.
+$(BUILD)/host/ffr_unit_tests_homefold: $(FW_SRCS) $(FW_TESTS) $(FW_HDRS) firmware/tests/unit.h firmware/tests/rig.h Makefile
+	@mkdir -p $(dir $@)
+	$(CC) $(CSTD) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -Ifirmware/tests \
+		-DFFR_HOME_FOLD_MM=160.0f -o $@ $(FW_SRCS) $(FW_TESTS) -lm
+
 firmware-host: $(BUILD)/host/libffr.so $(BUILD)/host/ffr-host-board
 
 # The host board: the firmware, the codec and a POSIX transport (pty, TCP, stdio).
@@ -88,8 +95,9 @@ fuzz: $(BUILD)/fuzz/ffr_fuzz_rx
 	$(BUILD)/fuzz/ffr_fuzz_rx -max_total_time=$(FUZZ_SECONDS) -max_len=2048 -print_final_stats=1 \
 		$(BUILD)/fuzz/corpus firmware/tests/fuzz/seeds
 
-firmware-test: $(BUILD)/host/ffr_unit_tests
+firmware-test: $(BUILD)/host/ffr_unit_tests $(BUILD)/host/ffr_unit_tests_homefold
 	$(BUILD)/host/ffr_unit_tests
+	$(BUILD)/host/ffr_unit_tests_homefold
 
 # The Cortex-M4 build: every source compiled for the target, linked into a
 # size probe (the firmware plus a minimal main and newlib-nano), sizes printed.
@@ -191,9 +199,10 @@ statechart: firmware-host
 lint: setup
 	$(VENV)/bin/ruff check .
 
-test: setup firmware-host $(BUILD)/host/ffr_unit_tests $(BUILD)/host/ffr_wire_tests
+test: setup firmware-host $(BUILD)/host/ffr_unit_tests $(BUILD)/host/ffr_unit_tests_homefold $(BUILD)/host/ffr_wire_tests
 	$(VENV)/bin/ruff check .
 	$(BUILD)/host/ffr_unit_tests
+	$(BUILD)/host/ffr_unit_tests_homefold
 	$(BUILD)/host/ffr_wire_tests --vectors $(WIRE_VECTORS)
 	$(VENV)/bin/pytest -q
 

@@ -1027,7 +1027,7 @@ TEST(backed_up_to_a_wall_read_folded_back)
     ffr_config_default(&cfg);
     if (FFR_HOME_FOLD_MM <= 0.0f) {
         /* built without the fold-back rules (the default): not exercised
-         * here; `make firmware-test` with -DFFR_HOME_FOLD_MM=160.0f runs it */
+         * here; `make firmware-test`'s second build (-DFFR_HOME_FOLD_MM=160.0f) runs it */
         CHECK(FFR_HOME_FOLD_MM == 0.0f);
         return;
     }
@@ -1949,6 +1949,10 @@ typedef struct {
     float x_min;    /* how far back it went before the sweep (odometry x)       */
     float probe_start_x; /* where the first probe began (odometry x)            */
     float probe_end_x; /* where the last probe ended (odometry x)               */
+    int back_after_unfold; /* a straight move back for the S (LEG_BACK, LEG_BACK_S)
+                              began after unfold_front's move back            */
+    int s_after_unfold; /* an S began after it (its first arc, either way)     */
+    int probed;         /* a probe (PH_PROBE) began, either way                  */
 } orient_run_t;
 
 /* The whole firmware orienting among the walls of `box` from the origin
@@ -1959,8 +1963,8 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
 {
     rig_t r;
     float ir[FFR_IR_COUNT];
-    orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0, 0.0f, 0.0f, 0.0f};
-    int i, swept = 0, probing = 0;
+    orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0, 0.0f, 0.0f, 0.0f, 0, 0, 0};
+    int i, swept = 0, probing = 0, probe_seen = 0;
     rig_init(&r, cfg);
     r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
     r.in.start = 1;
@@ -1977,10 +1981,15 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
         if (r.out.state != FFR_ST_ORIENT && i > 2) {
             break;
         }
-        if (!run.probed_back && o->phase == 9u) {
+        if (!probe_seen && o->phase == 9u) {
             run.probe_start_x = r.st.odo.x_mm;
+            probe_seen = run.probed = 1;
         }
         run.probed_back |= o->phase == 9u && o->reverse;  /* PH_PROBE */
+        if (run.unfolded && o->phase == 8u) { /* PH_ESCAPE after LEG_ALONG's move */
+            run.back_after_unfold |= o->leg == 5u || o->leg == 8u;
+            run.s_after_unfold |= s_first_arc(o);
+        }
         run.unfolded |= o->phase == 8u && o->leg == 11u; /* PH_ESCAPE, LEG_ALONG */
         if (probing && o->phase != 9u) {
             run.probe_end_x = r.st.odo.x_mm;
@@ -2284,6 +2293,9 @@ TEST(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first)
         CHECK(run.clear);
         CHECK(run.probed_back && run.unfolded);
         CHECK(run.x_min < -15.0f - 27.0f); /* backed on past the probe's 15 mm, by the whole 30 */
+        /* that move was the straight back: the S follows, with no second
+         * straight back before it (was_back) */
+        CHECK(run.s_after_unfold && !run.back_after_unfold);
         /* the same first look with three tries spent: the last one stands */
         rig_init(&r, &cfg);
         r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
@@ -2305,6 +2317,41 @@ TEST(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first)
         rig_tick(&r);
         CHECK(r.st.orient.escapes == 2u && r.st.orient.leg != 11u); /* not LEG_ALONG */
     }
+}
+
+/* The look's own probe (clear_step's, with the fold-back rules built in),
+ * not unfold_front's: a wall square behind, 55-90 mm off the rear face,
+ * read as it is by both rear rangers within the fold-back span (folded
+ * back it would be within the rear corners' turning circle). The probe
+ * forward sees the readings grow, as a wall that far, and the robot
+ * returns to where it stood (LEG_PROBE_RETURN, its way back asked of
+ * escape_free, as far as it came): the sweep turns there, with no
+ * contact. */
+TEST(the_looks_probe_finding_the_wall_as_read_returns_to_where_it_stood)
+{
+    ffr_config_t cfg;
+    float behind;
+    int probed = 0;
+    ffr_config_default(&cfg);
+    if (FFR_HOME_FOLD_MM <= 0.0f) {
+        /* built without the fold-back rules (the default): no such probe;
+         * `make firmware-test` runs it in its second build */
+        CHECK(FFR_HOME_FOLD_MM == 0.0f);
+        return;
+    }
+    for (behind = 155.0f; behind <= 190.0f; behind += 5.0f) {
+        const float b[1][3] = {{-1.0f, 0.0f, behind}};
+        orient_run_t run = orient_run(&cfg, b, 1);
+        CHECK(run.clear);
+        CHECK(!run.unfolded);
+        if (!run.probed) {
+            continue; /* no probe: not near even if folded back */
+        }
+        probed++;
+        CHECK(ffr_absf(run.probe_end_x - run.probe_start_x) < 3.0f);
+        CHECK(run.x_min > -3.0f); /* forward and back: never behind where it began */
+    }
+    CHECK(probed >= 4);
 }
 
 /* The same S forward with no floor ahead as read, the centre ranger
@@ -2465,6 +2512,10 @@ TEST(a_fold_move_turned_back_goes_as_far_as_it_came_and_tells_fold_back)
     float ir[FFR_IR_COUNT], dist0, came;
     int i;
     ffr_config_default(&cfg);
+    if (FFR_HOME_FOLD_MM > 0.0f) {
+        CHECK(FFR_HOME_FOLD_MM > 0.0f); /* the fold moves are off with the probe on */
+        return;
+    }
     rear_fold_start(&r, &cfg, ir);
     dist0 = r.st.odo.dist_mm;
     for (i = 0; i < 20; ++i) { /* the first look, then on into the move */
@@ -2677,6 +2728,7 @@ SUITE(home_orient,
       TEST_REF(a_wall_beside_with_little_floor_ahead_still_gets_the_s),
       TEST_REF(an_s_short_of_floor_ahead_backs_straight_first_with_a_far_wall_behind),
       TEST_REF(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first),
+      TEST_REF(the_looks_probe_finding_the_wall_as_read_returns_to_where_it_stood),
       TEST_REF(a_wall_ahead_read_as_it_is_gets_the_probe_and_no_move_back),
       TEST_REF(a_body_along_a_wall_leaves_it_by_an_s_begun_gently),
       TEST_REF(a_fold_move_forward_turns_back_when_its_front_ranger_reads_longer),

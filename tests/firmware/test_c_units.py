@@ -13,7 +13,7 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 # the C unit tests: suites (one a file) and named tests (firmware/tests/main.c prints both)
 C_SUITES = 20
-C_TESTS = 176
+C_TESTS = 177
 
 
 def _make(target: str) -> subprocess.CompletedProcess[str]:
@@ -38,6 +38,27 @@ def test_c_unit_tests_pass() -> None:
     assert len({name.split(".")[0] for name in listed}) == C_SUITES
     # one suite a file, every file's suite run (main.c lists them)
     assert len(list((REPO / "firmware" / "tests").glob("test_*.c"))) == C_SUITES
+
+
+def test_c_unit_tests_pass_with_the_home_fold_rules_built_in() -> None:
+    # FFR_HOME_FOLD_MM (off as shipped) compiles in the orientation's own probe; its tests run here
+    build = _make("build/host/ffr_unit_tests_homefold")
+    assert build.returncode == 0, build.stderr
+    run = subprocess.run([str(REPO / "build/host/ffr_unit_tests_homefold")], capture_output=True, text=True,
+                         timeout=120)
+    assert run.returncode == 0, run.stdout + run.stderr
+    m = re.search(r"firmware: (\d+) suites, (\d+) tests \((\d+) failed\), (\d+) checks passed, (\d+) failed",
+                  run.stdout)
+    assert m, run.stdout
+    assert (int(m.group(1)), int(m.group(2))) == (C_SUITES, C_TESTS)
+    assert m.group(3) == "0" and m.group(5) == "0" and int(m.group(4)) > 1000
+    # the build differs: the default build's checks of the probe's return are skipped there
+    one = subprocess.run([str(REPO / "build/host/ffr_unit_tests_homefold"),
+                          "home_orient.the_looks_probe_finding_the_wall_as_read_returns_to_where_it_stood"],
+                         capture_output=True, text=True, timeout=60)
+    assert one.returncode == 0, one.stdout
+    n = re.search(r"(\d+) checks passed", one.stdout)
+    assert n and int(n.group(1)) > 10, one.stdout
 
 
 def test_a_failed_c_check_names_its_test() -> None:
