@@ -381,7 +381,7 @@ typedef struct {
     uint8_t anchors;               /* rangers (bit i) whose last hit anchors a stretch of wall; bit 7: a move back watched (rear_passed) */
     uint8_t reverse;               /* the shift (or escape leg) is driven backwards */
     uint8_t escapes;               /* moves made to get room to turn in place */
-    uint8_t leg;                   /* the escape's leg: 0 straight, 1-3 the S and the way back, 4 the probe's way back, 5 straight back, 6 a fold move, 7 a fold move turned back, 8 straight back for the S's floor, 9 the S's first arc begun gently, 10 unfold_front's probe's way back, 11 unfold_front's moves back, 12 the move forward after a rear peak passed */
+    uint8_t leg;                   /* the escape's leg: 0 straight, 1-3 the S and the way back, 4 the probe's way back, 5 straight back, 6 a fold move, 7 a fold move turned back, 8 straight back for the S's floor, 9 the S's first arc begun gently, 10 unfold_front's probe's way back, 11 unfold_front's moves back */
     uint8_t trusted;               /* rangers (bit i) whose short reading grew as the robot moved away: no fold-back */
     uint8_t probed;                /* rangers the last escape moved away from, whose reading it watches */
     uint8_t probe_done;            /* the probe for fold-back made since the robot last looked afresh */

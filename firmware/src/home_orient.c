@@ -126,7 +126,6 @@
 #define LEG_PROBE_RETURN 4u       /* the probe's way back to where it stood (nothing folded back) */
 #define LEG_ALONG_RETURN 10u      /* the same for unfold_front's probe, retracing its way */
 #define LEG_ALONG 11u             /* unfold_front's moves back (its probe, the move after): the wall beside along them */
-#define LEG_PASS 12u              /* pass_move's fold move forward: the wall beside along it */
 #define LEG_BACK 5u               /* the escape's leg: straight back, the front shut */
 #define LEG_FOLD 6u               /* the escape's leg: a fold move, straight (rear: forward; front: back) */
 #define LEG_TURNED 7u             /* the escape's leg: a fold move forward turned back (lead_grew) */
@@ -1303,9 +1302,9 @@ static void probe_step(ffr_state_t *st)
 
 /* A straight move of len mm away from the rangers `away` (backward: from
  * rangers looking ahead, else from rangers looking back). How their
- * readings change over it tells fold-back (clear_step, LEG_FOLD, LEG_PASS
- * and LEG_TURNED). leg: LEG_FOLD or LEG_PASS (fold_move) or LEG_TURNED (a
- * fold move forward turned back, lead_grew). */
+ * readings change over it tells fold-back (clear_step, LEG_FOLD and
+ * LEG_TURNED). leg: LEG_FOLD (fold_move) or LEG_TURNED (a fold move forward
+ * turned back, lead_grew). */
 static void fold_leg(ffr_state_t *st, uint8_t away, float len, uint8_t backward, uint8_t leg)
 {
     ffr_home_orient_t *o = &st->orient;
@@ -1319,12 +1318,11 @@ static void fold_leg(ffr_state_t *st, uint8_t away, float len, uint8_t backward,
 }
 
 /* A fold move: one of the moves before the sweep. The rear and front fold
- * moves (LEG_FOLD) and the move after a passed peak (pass_move, LEG_PASS)
- * make it. */
-static void fold_move(ffr_state_t *st, uint8_t away, float len, uint8_t backward, uint8_t leg)
+ * moves and the move after a passed peak (pass_move) make it. */
+static void fold_move(ffr_state_t *st, uint8_t away, float len, uint8_t backward)
 {
     st->orient.escapes++;
-    fold_leg(st, away, len, backward, leg);
+    fold_leg(st, away, len, backward, LEG_FOLD);
 }
 
 /* The fold move away from `away` if there are such rangers and the end it
@@ -1334,7 +1332,7 @@ static int fold_move_if_room(ffr_state_t *st, uint8_t away, float len, uint8_t b
     if (away == 0u || straight_room(st, backward, 0u) < len) {
         return 0;
     }
-    fold_move(st, away, len, backward, LEG_FOLD);
+    fold_move(st, away, len, backward);
     return 1;
 }
 
@@ -1436,7 +1434,7 @@ static int clear_step(ffr_state_t *st)
     uint8_t suspects, grown;
     int i, found;
     grown = ffr_orient_probe_trust(cfg, o->probed, o->probe_mm, st->ir_mm);
-    if (o->leg == LEG_FOLD || o->leg == LEG_PASS || o->leg == LEG_TURNED) {
+    if (o->leg == LEG_FOLD || o->leg == LEG_TURNED) {
         /* after a fold move: a ranger whose reading dropped to its span's
          * bottom or shrank as the robot moved away was folded back (a wall
          * as far as read recedes; one along the move, read by the ranger's
@@ -1732,13 +1730,11 @@ static int escape_free(const ffr_state_t *st)
             return 0;
         }
     }
-    /* back_for_s's move, unfold_front's and pass_move's: the wall beside,
-     * at its span's bottom (unfold_front's and pass_move's: near it), is
-     * along the move, no end of it */
+    /* back_for_s's move and unfold_front's: the wall beside, at its span's
+     * bottom (unfold_front's: near it), is along the move, no end of it */
     if (end_room(st, o->reverse & 1u, band,
                  o->leg == LEG_BACK_S ? along_skip(st, 0.5f)
-                                      : (o->leg == LEG_ALONG || o->leg == LEG_PASS ? along_skip(st, BESIDE_REAR_MM)
-                                                                                   : 0u)) > need) {
+                                      : (o->leg == LEG_ALONG ? along_skip(st, BESIDE_REAR_MM) : 0u)) > need) {
         return 1;
     }
     /* forward on the S's first arc: the wall beside read at the span's
@@ -2020,24 +2016,15 @@ static uint8_t rear_passed(ffr_state_t *st)
     return passed;
 }
 
-/* The move forward after a rear peak passed: a straight move, so a wall
- * beside read near the bottom of its side's span (along_skip) is along it,
- * no end of it, in its room and in its watch (escape_free), as for
- * unfold_front's moves. Taken as an end, that wall left no room: the move
- * ended on the tick it began and spent a try standing, and the look backed
- * again toward the wall behind; with the tries spent so, the sweep turned
- * in place where the rear corner had come (orientation bench start seeds
- * 8522, 11607, 11955, in the home circle's south-east corner;
- * docs/robustness.md, "The move forward after a rear peak passed"). */
 static void pass_move(ffr_state_t *st, uint8_t passed)
 {
     ffr_home_orient_t *o = &st->orient;
-    float len = straight_room(st, 0, along_skip(st, BESIDE_REAR_MM));
+    float len = straight_room(st, 0, 0u);
     ffr_stop(st);
     if (o->phase == PH_SHIFT_DRIVE) {
         o->after_shift = 1u;
     }
-    fold_move(st, passed, ffr_clampf(len, 0.0f, REAR_FOLD_MOVE_MM), 0u, LEG_PASS);
+    fold_move(st, passed, ffr_clampf(len, 0.0f, REAR_FOLD_MOVE_MM), 0u);
 }
 
 /* A fold move forward watches its leading end. A front ranger that read
@@ -2054,7 +2041,7 @@ static uint8_t lead_grew(const ffr_state_t *st)
     const ffr_home_orient_t *o = &st->orient;
     uint8_t lead, m = 0u;
     int i;
-    if ((o->leg != LEG_FOLD && o->leg != LEG_PASS) || o->reverse || o->escapes >= ESCAPE_TRIES) {
+    if (o->leg != LEG_FOLD || o->reverse || o->escapes >= ESCAPE_TRIES) {
         /* not a fold move forward, or the last of the moves: a move back may
          * pass a rear peak (pass_move, forward again), and the two would
          * take turns */

@@ -1953,8 +1953,6 @@ typedef struct {
                               began after unfold_front's move back            */
     int s_after_unfold; /* an S began after it (its first arc, either way)     */
     int probed;         /* a probe (PH_PROBE) began, either way                  */
-    int passes;         /* moves forward after a rear peak passed (LEG_PASS) begun */
-    float pass_mm;      /* the longest of them (odometry distance)              */
 } orient_run_t;
 
 /* The whole firmware orienting among the walls of `box` from the origin
@@ -1965,9 +1963,8 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
 {
     rig_t r;
     float ir[FFR_IR_COUNT];
-    orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0, 0.0f, 0.0f, 0.0f, 0, 0, 0, 0, 0.0f};
-    int i, swept = 0, probing = 0, probe_seen = 0, passing = 0;
-    float pass_from = 0.0f;
+    orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0, 0.0f, 0.0f, 0.0f, 0, 0, 0};
+    int i, swept = 0, probing = 0, probe_seen = 0;
     rig_init(&r, cfg);
     r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
     r.in.start = 1;
@@ -1994,14 +1991,6 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
             run.s_after_unfold |= s_first_arc(o);
         }
         run.unfolded |= o->phase == 8u && o->leg == 11u; /* PH_ESCAPE, LEG_ALONG */
-        if (o->phase == 8u && o->leg == 12u) { /* PH_ESCAPE, LEG_PASS */
-            if (!passing) {
-                run.passes++;
-                pass_from = r.st.odo.dist_mm;
-            }
-            run.pass_mm = r.st.odo.dist_mm - pass_from > run.pass_mm ? r.st.odo.dist_mm - pass_from : run.pass_mm;
-        }
-        passing = o->phase == 8u && o->leg == 12u;
         if (probing && o->phase != 9u) {
             run.probe_end_x = r.st.odo.x_mm;
         }
@@ -2189,7 +2178,7 @@ TEST(a_move_back_stops_when_a_rear_ranger_passes_its_peak)
             }
             clear &= box_clear(b, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
             x_min = r.st.odo.x_mm < x_min ? r.st.odo.x_mm : x_min;
-            stopped |= r.st.orient.phase == 8u && r.st.orient.leg == 12u; /* PH_ESCAPE, LEG_PASS */
+            stopped |= r.st.orient.phase == 8u && r.st.orient.leg == 6u; /* PH_ESCAPE, LEG_FOLD */
         }
         CHECK(r.st.state != FFR_ST_ORIENT); /* the aim's turn done: the route begins */
         CHECK(clear);
@@ -2363,40 +2352,6 @@ TEST(the_looks_probe_finding_the_wall_as_read_returns_to_where_it_stood)
         CHECK(run.x_min > -3.0f); /* forward and back: never behind where it began */
     }
     CHECK(probed >= 4);
-}
-
-/* A corner: a wall across 30-70 mm ahead of the front face (the front
- * shut), a wall beside on the left 27-33 mm off its side converging ahead
- * at 4 degrees (read at its span's bottom or near it by the left pair), a
- * wall behind 140-160 mm off the rear face, all read folded back below the
- * span. The straight move back nears the wall behind until a rear ranger
- * passes its peak; the move forward that follows (LEG_PASS) goes along the
- * wall beside: that wall is no end of it. Taken as one, it left the move
- * no room: it ended on the tick it began, a try spent standing, the look
- * backed again, and the sweep turned in place with a rear corner met
- * (orientation bench start seeds 8522, 11607, 11955: the home circle's
- * south-east corner). In a grid of 1,176 such corners (the wall ahead
- * 30-90 mm, beside 3-33 mm at -12 to 12 degrees, behind 40-160 mm) the
- * rule turns these 5 contacts into clear runs and no clear run into a
- * contact (docs/robustness.md). */
-TEST(the_move_forward_after_a_rear_peak_passed_goes_along_a_wall_beside)
-{
-    static const float cases[5][3] = {
-        {50.0f, 27.0f, 140.0f}, {50.0f, 33.0f, 140.0f}, {70.0f, 27.0f, 140.0f}, {70.0f, 33.0f, 160.0f},
-        {30.0f, 27.0f, 160.0f}};
-    const float c = 0.99756f, s = 0.06976f; /* cos, sin 4 degrees */
-    ffr_config_t cfg;
-    int k;
-    ffr_config_default(&cfg);
-    for (k = 0; k < 5; ++k) {
-        const float b[3][3] = {{1.0f, 0.0f, cfg.body_front_mm + cases[k][0]},
-                               {s, c, s * cfg.body_front_mm + c * cfg.body_half_width_mm + cases[k][1]},
-                               {-1.0f, 0.0f, 100.0f + cases[k][2]}};
-        orient_run_t run = orient_run_read(&cfg, b, 3, 1, 0.0f);
-        CHECK(run.clear);
-        CHECK(run.passes >= 1);
-        CHECK(run.pass_mm > 10.0f); /* not refused by the wall beside (14-45 mm) */
-    }
 }
 
 /* The same S forward with no floor ahead as read, the centre ranger
@@ -2774,7 +2729,6 @@ SUITE(home_orient,
       TEST_REF(an_s_short_of_floor_ahead_backs_straight_first_with_a_far_wall_behind),
       TEST_REF(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first),
       TEST_REF(the_looks_probe_finding_the_wall_as_read_returns_to_where_it_stood),
-      TEST_REF(the_move_forward_after_a_rear_peak_passed_goes_along_a_wall_beside),
       TEST_REF(a_wall_ahead_read_as_it_is_gets_the_probe_and_no_move_back),
       TEST_REF(a_body_along_a_wall_leaves_it_by_an_s_begun_gently),
       TEST_REF(a_fold_move_forward_turns_back_when_its_front_ranger_reads_longer),
