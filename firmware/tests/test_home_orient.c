@@ -2161,7 +2161,7 @@ TEST(a_move_back_stops_when_a_rear_ranger_passes_its_peak)
     ffr_config_default(&cfg);
     for (k = 0; k < 2; ++k) {
         const float (*b)[3] = k == 0 ? box : &box[1];
-        int walls = k == 0 ? 3 : 2, clear = 1, i, stopped = 0;
+        int walls = k == 0 ? 3 : 2, clear = 1, i, stopped = 0, looked = 0;
         float x_min = 0.0f;
         rig_init(&r, &cfg);
         box_tick_peak(&r, &cfg, b, walls); /* the readings in */
@@ -2179,11 +2179,13 @@ TEST(a_move_back_stops_when_a_rear_ranger_passes_its_peak)
             clear &= box_clear(b, walls, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad);
             x_min = r.st.odo.x_mm < x_min ? r.st.odo.x_mm : x_min;
             stopped |= r.st.orient.phase == 8u && r.st.orient.leg == 6u; /* PH_ESCAPE, LEG_FOLD */
+            looked |= stopped && r.st.orient.phase == 7u; /* PH_CLEAR after it */
         }
         CHECK(r.st.state != FFR_ST_ORIENT); /* the aim's turn done: the route begins */
         CHECK(clear);
         if (k == 0) {
             CHECK(stopped);
+            CHECK(!looked); /* from the shift, the move forward ends in the aim (after_shift), no look again */
             CHECK(x_min > -223.0f + 10.0f); /* stopped short of the wall (the shift brakes from 300 mm/s) */
             CHECK(x_min < -150.0f);         /* and not long before the peak (171 mm) */
         } else {
