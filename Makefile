@@ -56,17 +56,18 @@ $(BUILD)/host/libffr.so: $(FW_SRCS) $(WIRE_SRCS) $(FW_HDRS) Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(HOST_CFLAGS) -shared -o $@ $(FW_SRCS) $(WIRE_SRCS)
 
-$(BUILD)/host/ffr_unit_tests: $(FW_SRCS) $(FW_TESTS) $(FW_HDRS) firmware/tests/unit.h firmware/tests/rig.h Makefile
+UNIT_TEST_DEPS := $(FW_SRCS) $(FW_TESTS) $(FW_HDRS) firmware/tests/unit.h firmware/tests/rig.h Makefile
+UNIT_TEST_CC = $(CC) $(CSTD) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -Ifirmware/tests
+
+$(BUILD)/host/ffr_unit_tests: $(UNIT_TEST_DEPS)
 	@mkdir -p $(dir $@)
-	$(CC) $(CSTD) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -Ifirmware/tests \
-		-o $@ $(FW_SRCS) $(FW_TESTS) -lm
+	$(UNIT_TEST_CC) -o $@ $(FW_SRCS) $(FW_TESTS) -lm
 
 # The same tests with the orientation's fold-back rules built in (FFR_HOME_FOLD_MM, off in
 # the firmware as shipped: ffr_internal.h): the code those rules reach is tested too.
-$(BUILD)/host/ffr_unit_tests_homefold: $(FW_SRCS) $(FW_TESTS) $(FW_HDRS) firmware/tests/unit.h firmware/tests/rig.h Makefile
+$(BUILD)/host/ffr_unit_tests_homefold: $(UNIT_TEST_DEPS)
 	@mkdir -p $(dir $@)
-	$(CC) $(CSTD) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -Ifirmware/tests \
-		-DFFR_HOME_FOLD_MM=160.0f -o $@ $(FW_SRCS) $(FW_TESTS) -lm
+	$(UNIT_TEST_CC) -DFFR_HOME_FOLD_MM=160.0f -o $@ $(FW_SRCS) $(FW_TESTS) -lm
 
 firmware-host: $(BUILD)/host/libffr.so $(BUILD)/host/ffr-host-board
 
@@ -78,8 +79,7 @@ $(BUILD)/host/ffr-host-board: $(FW_SRCS) $(WIRE_SRCS) $(HOST_BOARD_SRCS) $(FW_HD
 # the wire tests share the unit tests' runner (firmware/tests/unit_runner.c)
 $(BUILD)/host/ffr_wire_tests: $(FW_SRCS) $(WIRE_SRCS) $(WIRE_TESTS) $(FW_HDRS) firmware/tests/unit.h firmware/tests/unit_runner.c firmware/tests/wire/wire_tests.h Makefile
 	@mkdir -p $(dir $@)
-	$(CC) $(CSTD) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -Ifirmware/tests \
-		-Ifirmware/tests/wire -o $@ $(FW_SRCS) $(WIRE_SRCS) $(WIRE_TESTS) firmware/tests/unit_runner.c -lm
+	$(UNIT_TEST_CC) -Ifirmware/tests/wire -o $@ $(FW_SRCS) $(WIRE_SRCS) $(WIRE_TESTS) firmware/tests/unit_runner.c -lm
 
 wire-test: $(BUILD)/host/ffr_wire_tests
 	$(BUILD)/host/ffr_wire_tests --vectors $(WIRE_VECTORS)

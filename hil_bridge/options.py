@@ -58,9 +58,6 @@ SIMULATED_STEP_BUDGET_S = 15.0
 # with duplicates and delays ended "no OUTPUTS after 2 tries in 15 s"), so it keeps 2 s and 6 s.
 SIMULATED_FAULTY_TIMEOUT_S = 2.0
 SIMULATED_FAULTY_STEP_BUDGET_S = 6.0
-# The handshake on a clean simulated link waits like a step: its first wait is timeout_s, within
-# the step budget. Seen: a READY later than the real-line 0.25 s first try, on 2 cores running the
-# test suite beside a second one and two busy loops, cost two retries and two stale READYs.
 
 
 def simulated_board(opts: WireOptions) -> WireOptions:
@@ -73,6 +70,9 @@ def simulated_board(opts: WireOptions) -> WireOptions:
         budget = SIMULATED_FAULTY_STEP_BUDGET_S if faulty else SIMULATED_STEP_BUDGET_S
         opts.step_budget_s = max(opts.step_budget_s, budget)
     if not faulty:
+        # the handshake waits like a step: its first wait is timeout_s, within the step budget. Seen:
+        # a READY later than the real-line 0.25 s first try, on 2 cores running the test suite beside
+        # a second one and two busy loops, cost two retries and two stale READYs
         if "handshake_try_s" not in opts.given:
             opts.handshake_try_s = opts.timeout_s
         if "handshake_timeout_s" not in opts.given:

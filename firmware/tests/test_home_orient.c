@@ -1964,7 +1964,7 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
     rig_t r;
     float ir[FFR_IR_COUNT];
     orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0, 0.0f, 0.0f, 0.0f, 0, 0, 0};
-    int i, swept = 0, probing = 0, probe_seen = 0;
+    int i, swept = 0, probing = 0;
     rig_init(&r, cfg);
     r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
     r.in.start = 1;
@@ -1981,9 +1981,9 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
         if (r.out.state != FFR_ST_ORIENT && i > 2) {
             break;
         }
-        if (!probe_seen && o->phase == 9u) {
+        if (!run.probed && o->phase == 9u) {
             run.probe_start_x = r.st.odo.x_mm;
-            probe_seen = run.probed = 1;
+            run.probed = 1;
         }
         run.probed_back |= o->phase == 9u && o->reverse;  /* PH_PROBE */
         if (run.unfolded && o->phase == 8u) { /* PH_ESCAPE after LEG_ALONG's move */

@@ -20,18 +20,22 @@ def _make(target: str) -> subprocess.CompletedProcess[str]:
     return subprocess.run(["make", "-s", target], cwd=REPO, capture_output=True, text=True, timeout=600)
 
 
-def test_c_unit_tests_pass() -> None:
-    build = _make("build/host/ffr_unit_tests")
+def _passing_run(target: str) -> None:
+    """Build the C unit tests as `target` and run them all: every check passes, and the exact
+    numbers of suites and tests (a suite or test added, or lost, changes these: update them with it)."""
+    build = _make(target)
     assert build.returncode == 0, build.stderr
-    run = subprocess.run([str(REPO / "build/host/ffr_unit_tests")], capture_output=True, text=True,
-                         timeout=120)
+    run = subprocess.run([str(REPO / target)], capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stdout + run.stderr
     m = re.search(r"firmware: (\d+) suites, (\d+) tests \((\d+) failed\), (\d+) checks passed, (\d+) failed",
                   run.stdout)
     assert m, run.stdout
-    # exact: a suite or test added (or lost) changes these; update them with it
     assert (int(m.group(1)), int(m.group(2))) == (C_SUITES, C_TESTS)
     assert m.group(3) == "0" and m.group(5) == "0" and int(m.group(4)) > 1000
+
+
+def test_c_unit_tests_pass() -> None:
+    _passing_run("build/host/ffr_unit_tests")
     listed = subprocess.run([str(REPO / "build/host/ffr_unit_tests"), "--list"], capture_output=True, text=True,
                             timeout=60).stdout.split()
     assert len(listed) == C_TESTS and len(set(listed)) == C_TESTS  # every test named, no name twice
@@ -42,16 +46,7 @@ def test_c_unit_tests_pass() -> None:
 
 def test_c_unit_tests_pass_with_the_home_fold_rules_built_in() -> None:
     # FFR_HOME_FOLD_MM (off as shipped) compiles in the orientation's own probe; its tests run here
-    build = _make("build/host/ffr_unit_tests_homefold")
-    assert build.returncode == 0, build.stderr
-    run = subprocess.run([str(REPO / "build/host/ffr_unit_tests_homefold")], capture_output=True, text=True,
-                         timeout=120)
-    assert run.returncode == 0, run.stdout + run.stderr
-    m = re.search(r"firmware: (\d+) suites, (\d+) tests \((\d+) failed\), (\d+) checks passed, (\d+) failed",
-                  run.stdout)
-    assert m, run.stdout
-    assert (int(m.group(1)), int(m.group(2))) == (C_SUITES, C_TESTS)
-    assert m.group(3) == "0" and m.group(5) == "0" and int(m.group(4)) > 1000
+    _passing_run("build/host/ffr_unit_tests_homefold")
     # the build differs: the default build's checks of the probe's return are skipped there
     one = subprocess.run([str(REPO / "build/host/ffr_unit_tests_homefold"),
                           "home_orient.the_looks_probe_finding_the_wall_as_read_returns_to_where_it_stood"],
