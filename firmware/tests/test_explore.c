@@ -293,6 +293,51 @@ TEST(a_wall_end_behind_where_the_leg_began_is_the_door_just_left)
     CHECK_NEAR(r.st.explore.goal_mm, start + 30.0f, 1e-3);
 }
 
+/* the right wall ended 100 mm past where the leg began: the wrap to half a
+ * hallway past that end (one tick); then the opening's far edge seen
+ * `width_mm` past the end, one tick more. The wrap's goal, from the wall's end. */
+static float wrap_goal_with_far_edge(rig_t *r, const ffr_config_t *cfg, float width_mm)
+{
+    float end = right_wall_ended_before_the_leg(r, cfg, -100.0f) + 100.0f;
+    r->st.open.gap_end_mm[FFR_SIDE_RIGHT] = end + width_mm;
+    rig_tick(r);
+    return r->st.explore.goal_mm - end;
+}
+
+TEST(a_narrow_openings_far_edge_seen_in_the_wrap_brings_the_turn_short_of_it)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    float cap, end;
+    ffr_config_default(&cfg);
+    cfg.start_area = FFR_START_HALLWAY;
+    /* no far edge yet: half a hallway past the wall's end */
+    end = right_wall_ended_before_the_leg(&r, &cfg, -100.0f) + 100.0f;
+    CHECK(r.out.step == PH_WRAP);
+    CHECK_NEAR(r.st.explore.goal_mm - end, cfg.hallway_half_mm, 1e-3);
+
+    /* a 30 cm opening as seen (a 41 cm hallway of a +-2.5 cm arena, its
+     * edges seen late and early): the turn comes 60 mm and the half width
+     * short of the far edge, before the middle a 46 cm one would have */
+    cap = 300.0f - cfg.body_half_width_mm - 60.0f;
+    CHECK_NEAR(wrap_goal_with_far_edge(&r, &cfg, 300.0f), cap, 1e-3);
+    CHECK(r.out.step == PH_WRAP);
+    CHECK(rig_run_until_state(&r, FFR_ST_TURN, 300));
+    CHECK(r.st.odo.dist_mm - end >= cap && r.st.odo.dist_mm - end < cap + 15.0f);
+    CHECK_NEAR(r.st.explore.target_rad - r.st.route.heading_ref_rad, -0.5f * FFR_PI, 1e-5);
+
+    /* a contest opening (46 cm): its far edge leaves the middle as it was */
+    CHECK_NEAR(wrap_goal_with_far_edge(&r, &cfg, 460.0f), cfg.hallway_half_mm, 1e-3);
+    /* nearly so: a turn less than 20 mm sooner is not worth a change */
+    CHECK_NEAR(wrap_goal_with_far_edge(&r, &cfg, cfg.hallway_half_mm + cfg.body_half_width_mm + 60.0f - 19.0f),
+               cfg.hallway_half_mm, 1e-3);
+    CHECK(wrap_goal_with_far_edge(&r, &cfg, cfg.hallway_half_mm + cfg.body_half_width_mm + 60.0f - 21.0f) <
+          cfg.hallway_half_mm - 20.0f);
+    /* no opening the body fits (two faces glimpsed 24 cm apart): as it was */
+    CHECK_NEAR(wrap_goal_with_far_edge(&r, &cfg, 2.0f * cfg.body_half_width_mm + 40.0f), cfg.hallway_half_mm, 1e-3);
+    CHECK(wrap_goal_with_far_edge(&r, &cfg, 2.0f * cfg.body_half_width_mm + 60.0f) < cfg.hallway_half_mm);
+}
+
 /* A straight leg of the explorer (ffr_drive_held) beside a hallway's walls,
  * odometry's heading `err` off the truth from the start: the robot's true
  * pose driven by the firmware's commands, the rangers read from it. Returns
@@ -542,6 +587,7 @@ SUITE(explore,
       TEST_REF(a_probe_that_finds_a_hallway_keeps_where_the_leg_began),
       TEST_REF(the_follow_holds_the_hallway_heading_within_ten_degrees),
       TEST_REF(a_wall_end_behind_where_the_leg_began_is_the_door_just_left),
+      TEST_REF(a_narrow_openings_far_edge_seen_in_the_wrap_brings_the_turn_short_of_it),
       TEST_REF(a_straight_leg_is_trued_up_by_the_walls_beside),
       TEST_REF(every_straight_leg_of_the_explorer_is_trued_up_by_the_walls_beside),
       TEST_REF(a_loop_with_its_rooms_searched_and_no_flame_makes_the_next_rooms_searched_harder),
