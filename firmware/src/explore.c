@@ -46,17 +46,18 @@ enum { EX_FOLLOW = 0, EX_WRAP, EX_TURN, EX_PROBE, EX_ROOM, EX_HOME, EX_BACK, EX_
 #define EX_NO_EDGE (-1.0e9f)
 /* The wrap after a wall's end goes half a contest hallway past it
  * (hallway_half_mm), the middle of a 46 cm opening. An arena's tolerance
- * makes openings narrower (41 cm at +-2.5 cm, 36 cm at +-5 cm): there that
- * point lies past the middle, and the probe in puts the body's far side on
- * the far jamb (+-2.5 cm hallway start seed 371: 126 mm past the middle of a
- * 414 mm opening). The front corner ranger sees the far edge during the
- * wrap (openings.c, gap_end_mm), so the turn comes no later than the half
- * width and EX_FAR_CLEAR_MM short of it (chosen; 40 measured worse). Only for a
- * gap wider than the body by EX_GAP_MIN_MM (narrower is no opening it
- * fits: two faces glimpsed apart, realistic robot 1 at 200 mm), and only
- * where that moves the turn by EX_CAP_MIN_MM or more: less is within the
- * edges' own scatter and only moves the rest of the walk
- * (docs/robustness.md, "The explorer's turn into a narrow opening"). */
+ * makes openings as narrow as 41 cm (+-2.5 cm) or 36 cm (+-5 cm): there that
+ * point lies past the middle, and with the wall's end put late the probe in
+ * puts the body's far side on the far jamb (+-2.5 cm hallway start seed 371:
+ * the end put ~100 mm late, the turn ~130 mm past the middle of a 414 mm
+ * opening). The front corner ranger sees the far edge during the wrap
+ * (openings.c, gap_end_mm), so the turn comes no later than the half width
+ * and EX_FAR_CLEAR_MM short of it (chosen; 40 measured worse). Only for a
+ * gap wider than the body by EX_GAP_MIN_MM (chosen: narrower is hardly an
+ * opening it fits; realistic robot 1 saw two faces 200 mm apart), and only
+ * where that moves the turn by EX_CAP_MIN_MM or more (chosen: fewer moved
+ * walks; without it the rows measured about the same). docs/robustness.md,
+ * "The explorer's turn into a narrow opening". */
 #define EX_FAR_CLEAR_MM 60.0f
 #define EX_GAP_MIN_MM 50.0f
 #define EX_CAP_MIN_MM 20.0f
@@ -235,7 +236,7 @@ static void wrap_short_of_far_edge(ffr_state_t *st)
     ffr_explore_t *e = &st->explore;
     const ffr_openings_t *op = &st->open;
     float cap;
-    if (e->backing || !ffr_opening(op, e->side) ||
+    if (e->backing || !ffr_opening(op, e->side) || !ffr_gap(op, e->side, 0) ||
         op->gap_end_mm[e->side] - op->open_at_mm[e->side] < 2.0f * cfg->body_half_width_mm + EX_GAP_MIN_MM) {
         return;
     }

@@ -299,6 +299,7 @@ TEST(a_wall_end_behind_where_the_leg_began_is_the_door_just_left)
 static float wrap_goal_with_far_edge(rig_t *r, const ffr_config_t *cfg, float width_mm)
 {
     float end = right_wall_ended_before_the_leg(r, cfg, -100.0f) + 100.0f;
+    r->st.open.gaps[FFR_SIDE_RIGHT] = 1;
     r->st.open.gap_end_mm[FFR_SIDE_RIGHT] = end + width_mm;
     rig_tick(r);
     return r->st.explore.goal_mm - end;
@@ -336,6 +337,38 @@ TEST(a_narrow_openings_far_edge_seen_in_the_wrap_brings_the_turn_short_of_it)
     /* no opening the body fits (two faces glimpsed 24 cm apart): as it was */
     CHECK_NEAR(wrap_goal_with_far_edge(&r, &cfg, 2.0f * cfg.body_half_width_mm + 40.0f), cfg.hallway_half_mm, 1e-3);
     CHECK(wrap_goal_with_far_edge(&r, &cfg, 2.0f * cfg.body_half_width_mm + 60.0f) < cfg.hallway_half_mm);
+    /* a far edge before the wall's end (an earlier opening's): as it was */
+    CHECK_NEAR(wrap_goal_with_far_edge(&r, &cfg, -300.0f), cfg.hallway_half_mm, 1e-3);
+    /* the gap tracker has closed no gap on this leg: its edge is not one */
+    end = right_wall_ended_before_the_leg(&r, &cfg, -100.0f) + 100.0f;
+    r.st.open.gaps[FFR_SIDE_RIGHT] = 0;
+    r.st.open.gap_end_mm[FFR_SIDE_RIGHT] = end + 300.0f;
+    rig_tick(&r);
+    CHECK_NEAR(r.st.explore.goal_mm - end, cfg.hallway_half_mm, 1e-3);
+    /* a wrap backing to a whole opening's middle (its goal along the held
+     * heading, not odometry's distance) is not capped */
+    end = right_wall_ended_before_the_leg(&r, &cfg, -100.0f) + 100.0f;
+    r.st.explore.backing = 1;
+    r.st.explore.goal_mm = 1.0e6f;
+    r.st.open.gaps[FFR_SIDE_RIGHT] = 1;
+    r.st.open.gap_end_mm[FFR_SIDE_RIGHT] = end + 300.0f;
+    rig_tick(&r);
+    CHECK_NEAR(r.st.explore.goal_mm, 1.0e6f, 0.0);
+    /* a wrap to a whole opening seen from its start (no wall's end on this
+     * leg): its goal stays as first set when the far edge is seen nearer
+     * (that wrap is not refined, above), however far back a wall's end lies */
+    started_in_a_hallway(&r, &cfg);
+    end = r.st.odo.dist_mm;
+    r.st.explore.start_mm = end - 600.0f;
+    r.st.open.gaps[FFR_SIDE_RIGHT] = 1;
+    r.st.open.gap_end_mm[FFR_SIDE_RIGHT] = end + cfg.hallway_half_mm + 100.0f;
+    rig_tick(&r);
+    CHECK(r.out.step == PH_WRAP && r.st.explore.backing == 0);
+    r.in.ir_mv[FFR_IR_RF] = 0; /* the side's front ranger on nothing: the wall's end stays put */
+    r.st.open.open_at_mm[FFR_SIDE_RIGHT] = end - 500.0f;
+    r.st.open.gap_end_mm[FFR_SIDE_RIGHT] = end - 50.0f;
+    rig_tick(&r);
+    CHECK_NEAR(r.st.explore.goal_mm - end, 100.0f, 1e-3);
 }
 
 /* A straight leg of the explorer (ffr_drive_held) beside a hallway's walls,
