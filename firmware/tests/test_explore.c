@@ -146,6 +146,20 @@ enum { PH_FOLLOW = 0, PH_WRAP = 1, PH_TURN = 2, PH_PROBE = 3 };
 /* and its phases as explore.c numbers them (ffr_explore_t.phase) */
 enum { EX_LEG_WRAP = 1, EX_LEG_PROBE = 3, EX_LEG_HOME = 5, EX_LEG_BACK = 6 };
 
+/* In a hallway, the leg begun 600 mm back, an opening on the followed side
+ * seen whole, its far edge `edge_mm` ahead; one tick. Where the robot stood. */
+static float whole_opening_ahead(rig_t *r, const ffr_config_t *cfg, float edge_mm)
+{
+    float d;
+    started_in_a_hallway(r, cfg);
+    d = r->st.odo.dist_mm;
+    r->st.explore.start_mm = d - 600.0f;
+    r->st.open.gaps[FFR_SIDE_RIGHT] = 1;
+    r->st.open.gap_end_mm[FFR_SIDE_RIGHT] = d + edge_mm;
+    rig_tick(r);
+    return d;
+}
+
 TEST(a_whole_opening_whose_middle_is_passed_is_backed_to_then_turned_into)
 {
     ffr_config_t cfg;
@@ -174,12 +188,7 @@ TEST(a_whole_opening_whose_middle_is_passed_is_backed_to_then_turned_into)
     CHECK(r.st.explore.backing == 0);
 
     /* its middle still ahead: on to it, no backing */
-    started_in_a_hallway(&r, &cfg);
-    d = r.st.odo.dist_mm;
-    r.st.explore.start_mm = d - 600.0f;
-    r.st.open.gaps[FFR_SIDE_RIGHT] = 1;
-    r.st.open.gap_end_mm[FFR_SIDE_RIGHT] = d + cfg.hallway_half_mm + 100.0f;
-    rig_tick(&r);
+    (void)whole_opening_ahead(&r, &cfg, cfg.hallway_half_mm + 100.0f);
     CHECK(r.out.step == PH_WRAP);
     CHECK(r.st.explore.backing == 0);
     for (i = 0; i < 5; ++i) {
@@ -357,12 +366,7 @@ TEST(a_narrow_openings_far_edge_seen_in_the_wrap_brings_the_turn_short_of_it)
     /* a wrap to a whole opening seen from its start (no wall's end on this
      * leg): its goal stays as first set when the far edge is seen nearer
      * (that wrap is not refined, above), however far back a wall's end lies */
-    started_in_a_hallway(&r, &cfg);
-    end = r.st.odo.dist_mm;
-    r.st.explore.start_mm = end - 600.0f;
-    r.st.open.gaps[FFR_SIDE_RIGHT] = 1;
-    r.st.open.gap_end_mm[FFR_SIDE_RIGHT] = end + cfg.hallway_half_mm + 100.0f;
-    rig_tick(&r);
+    end = whole_opening_ahead(&r, &cfg, cfg.hallway_half_mm + 100.0f);
     CHECK(r.out.step == PH_WRAP && r.st.explore.backing == 0);
     r.in.ir_mv[FFR_IR_RF] = 0; /* the side's front ranger on nothing: the wall's end stays put */
     r.st.open.open_at_mm[FFR_SIDE_RIGHT] = end - 500.0f;
