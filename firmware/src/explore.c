@@ -52,13 +52,18 @@ enum { EX_FOLLOW = 0, EX_WRAP, EX_TURN, EX_PROBE, EX_ROOM, EX_HOME, EX_BACK, EX_
  * the end put ~100 mm late, the turn ~130 mm past the middle of a 414 mm
  * opening). The front corner ranger sees the far edge during the wrap
  * (openings.c, gap_end_mm), so the turn comes no later than the half width
- * and EX_FAR_CLEAR_MM short of it (chosen; 40 measured worse). Only for a
+ * and EX_FAR_CLEAR_MM short of it: the body's far side that far from the far
+ * edge, short of the two edges' middle in gaps under 2 * (half width +
+ * EX_FAR_CLEAR_MM), 400 mm for the default robot (chosen: 40, 60, 80, 90 and
+ * 120 measured worse on the +-2.5 cm hallway row). Only for a
  * gap wider than the body by EX_GAP_MIN_MM (chosen: narrower is hardly an
  * opening it fits; realistic robot 1 saw two faces 200 mm apart), and only
  * where that moves the turn by EX_CAP_MIN_MM or more (chosen: fewer moved
  * walks; without it the rows measured about the same). docs/robustness.md,
  * "The explorer's turn into a narrow opening". */
-#define EX_FAR_CLEAR_MM 60.0f
+#ifndef EX_FAR_CLEAR_MM
+#define EX_FAR_CLEAR_MM 100.0f
+#endif
 #define EX_GAP_MIN_MM 50.0f
 #define EX_CAP_MIN_MM 20.0f
 

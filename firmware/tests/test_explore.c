@@ -327,9 +327,9 @@ TEST(a_narrow_openings_far_edge_seen_in_the_wrap_brings_the_turn_short_of_it)
     CHECK_NEAR(r.st.explore.goal_mm - end, cfg.hallway_half_mm, 1e-3);
 
     /* a 30 cm opening as seen (a 41 cm hallway of a +-2.5 cm arena, its
-     * edges seen late and early): the turn comes 60 mm and the half width
+     * edges seen late and early): the turn comes 100 mm and the half width
      * short of the far edge, before the middle a 46 cm one would have */
-    cap = 300.0f - cfg.body_half_width_mm - 60.0f;
+    cap = 300.0f - cfg.body_half_width_mm - 100.0f;
     CHECK_NEAR(wrap_goal_with_far_edge(&r, &cfg, 300.0f), cap, 1e-3);
     CHECK(r.out.step == PH_WRAP);
     CHECK(rig_run_until_state(&r, FFR_ST_TURN, 300));
@@ -339,9 +339,9 @@ TEST(a_narrow_openings_far_edge_seen_in_the_wrap_brings_the_turn_short_of_it)
     /* a contest opening (46 cm): its far edge leaves the middle as it was */
     CHECK_NEAR(wrap_goal_with_far_edge(&r, &cfg, 460.0f), cfg.hallway_half_mm, 1e-3);
     /* nearly so: a turn less than 20 mm sooner is not worth a change */
-    CHECK_NEAR(wrap_goal_with_far_edge(&r, &cfg, cfg.hallway_half_mm + cfg.body_half_width_mm + 60.0f - 19.0f),
+    CHECK_NEAR(wrap_goal_with_far_edge(&r, &cfg, cfg.hallway_half_mm + cfg.body_half_width_mm + 100.0f - 19.0f),
                cfg.hallway_half_mm, 1e-3);
-    CHECK(wrap_goal_with_far_edge(&r, &cfg, cfg.hallway_half_mm + cfg.body_half_width_mm + 60.0f - 21.0f) <
+    CHECK(wrap_goal_with_far_edge(&r, &cfg, cfg.hallway_half_mm + cfg.body_half_width_mm + 100.0f - 21.0f) <
           cfg.hallway_half_mm - 20.0f);
     /* no opening the body fits (two faces glimpsed 24 cm apart): as it was */
     CHECK_NEAR(wrap_goal_with_far_edge(&r, &cfg, 2.0f * cfg.body_half_width_mm + 40.0f), cfg.hallway_half_mm, 1e-3);
