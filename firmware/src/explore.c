@@ -54,8 +54,8 @@ enum { EX_FOLLOW = 0, EX_WRAP, EX_TURN, EX_PROBE, EX_ROOM, EX_HOME, EX_BACK, EX_
  * (openings.c, gap_end_mm), so the turn comes no later than the half width
  * and EX_FAR_CLEAR_MM short of it: the body's far side that far from the far
  * edge, short of the two edges' middle in gaps under 2 * (half width +
- * EX_FAR_CLEAR_MM), 400 mm for the default robot (chosen: 40, 60, 80, 90 and
- * 120 measured worse on the +-2.5 cm hallway row). Only for a
+ * EX_FAR_CLEAR_MM), 400 mm for the default robot (chosen: on the +-2.5 cm
+ * hallway row 40, 60 and 120 measured worse, 80 and 90 about the same). Only for a
  * gap wider than the body by EX_GAP_MIN_MM (chosen: narrower is hardly an
  * opening it fits; realistic robot 1 saw two faces 200 mm apart), and only
  * where that moves the turn by EX_CAP_MIN_MM or more (chosen: fewer moved
