@@ -12,10 +12,14 @@ not legal in it):
 - **angle**: between the body's axis and that wall (degrees, 0 = parallel, 90 = square on);
 - **axle**: the axle midpoint to the nearest wall (mm). Below the turning radius (the farthest
   body corner from the axle) the robot cannot turn in place before it has moved away.
+- **wall**: where the wall point nearest the axle lies: ``behind`` (beyond the rear face, where
+  no ranger of the default layout looks), ``ahead`` (beyond the front face), else ``left`` or
+  ``right`` (beside the body).
 
 It prints the starts and missions per gap band with their success rate, the same for the starts
 that must move before they can turn and for those that can turn in place, and every failed start
-(seed, gap, angle, axle, missions failed of run). ``--along DEG`` adds the gap bands of the starts
+(seed, gap, angle, axle, wall, missions failed of run), and the failed starts that must move
+counted by where their wall is. ``--along DEG`` adds the gap bands of the starts
 within DEG degrees of parallel to their nearest wall: the body along a wall, the case where an arc
 away from it swings the rear corner toward it (docs/robustness.md). ``--rows`` writes one tab-separated line per
 start. Geometry only: no mission is run again (seconds for thousands of rows; about a minute for
@@ -38,8 +42,10 @@ import numpy as np
 
 from sim_plant.arena import Arena
 from sim_plant.broken_pipe import exit_with
+from sim_plant.robot import RobotParams
 
 NEEDED = ("seed", "success", "replay")
+WALL_SIDES = ("behind", "left", "right", "ahead")
 DEFAULT_BINS = (10.0, 20.0, 40.0, 80.0)  # mm: band edges of the gap (chosen: the fold-back span and twice it)
 
 
@@ -51,6 +57,7 @@ class StartGeometry(NamedTuple):
     angle_deg: float
     axle_mm: float
     turn_radius_mm: float
+    wall: str  # where the wall point nearest the axle lies: ahead, behind, left or right
 
 
 @dataclass(frozen=True)
@@ -63,6 +70,7 @@ class Start:
     angle_deg: float
     axle_mm: float
     turn_radius_mm: float
+    wall: str
     missions: int
     failed: int
 
@@ -83,6 +91,23 @@ def _nearest_wall(poly: np.ndarray, arena: Arena) -> tuple[float, int]:
     return best, k
 
 
+def _wall_side(arena: Arena, robot: RobotParams, x: float, y: float, th: float) -> str:
+    """Where the wall point nearest (x, y) lies in the body's frame: beyond the front or rear face,
+    else on the left or right."""
+    polys = np.asarray(arena.wall_polys, dtype=float)
+    a = polys.reshape(-1, 2)
+    ab = np.roll(polys, -1, axis=1).reshape(-1, 2) - a
+    t = np.clip(((x - a[:, 0]) * ab[:, 0] + (y - a[:, 1]) * ab[:, 1]) / np.maximum((ab * ab).sum(axis=1), 1e-18),
+                0.0, 1.0)
+    q = a + t[:, None] * ab
+    k = int(np.argmin(np.hypot(q[:, 0] - x, q[:, 1] - y)))
+    px, py = float(q[k, 0]), float(q[k, 1])
+    c, s = math.cos(th), math.sin(th)
+    u, v = (px - x) * c + (py - y) * s, (py - y) * c - (px - x) * s
+    front, rear, _, _ = robot.footprint()
+    return "ahead" if u > front else "behind" if u < rear else "left" if v > 0.0 else "right"
+
+
 def measure(replay: str) -> StartGeometry:
     """Where a replay line's start left the body."""
     from harness.failure_places import replay_of
@@ -95,7 +120,8 @@ def measure(replay: str) -> StartGeometry:
     w = arena.walls[k]
     rel = abs(math.degrees(th - math.atan2(w.b[1] - w.a[1], w.b[0] - w.a[0]))) % 180.0
     return StartGeometry((x, y, math.degrees(th) % 360.0), gap * 1000.0, min(rel, 180.0 - rel),
-                         arena.wall_distance(x, y) * 1000.0, robot.turn_radius() * 1000.0)
+                         arena.wall_distance(x, y) * 1000.0, robot.turn_radius() * 1000.0,
+                         _wall_side(arena, robot, x, y, th))
 
 
 def _start_key(replay: str) -> str | None:
@@ -171,11 +197,15 @@ def report(starts: list[Start], bins: Sequence[float], along_deg: float | None =
         lines.append(f"{what}: {len(sel)} starts, {mn} missions"
                      + (f", {mok} succeeded ({100.0 * mok / mn:.1f} %)" if mn else ""))
     bad = [s for s in starts if s.failed]
+    sides = Counter(s.wall for s in bad if s.must_move)
+    if sides:
+        lines.append("failed starts that must move, by where the axle's nearest wall is: "
+                     + ", ".join(f"{w} {sides[w]}" for w in WALL_SIDES))
     if bad:
-        lines.append("failed starts: seed  x, y (m), heading (deg)  gap (mm)  angle (deg)  axle (mm)  failed")
+        lines.append("failed starts: seed  x, y (m), heading (deg)  gap (mm)  angle (deg)  axle (mm)  wall  failed")
         for s in bad:
             lines.append(f"  {s.seed:5d}  {s.pose[0]:.3f}, {s.pose[1]:.3f}, {s.pose[2]:5.1f}  {s.gap_mm:6.1f}"
-                         f"  {s.angle_deg:5.1f}  {s.axle_mm:6.1f}  {s.failed}/{s.missions}")
+                         f"  {s.angle_deg:5.1f}  {s.axle_mm:6.1f}  {s.wall:6s}  {s.failed}/{s.missions}")
     return "\n".join(lines)
 
 
@@ -218,10 +248,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_INPUT
     text = report(starts, bins, args.along)
     if args.rows:
-        lines = ["\t".join(("seed", "x", "y", "heading_deg", "gap_mm", "angle_deg", "axle_mm", "missions",
-                            "failed"))]
+        lines = ["\t".join(("seed", "x", "y", "heading_deg", "gap_mm", "angle_deg", "axle_mm", "wall",
+                            "missions", "failed"))]
         lines += ["\t".join((str(s.seed), f"{s.pose[0]:.4f}", f"{s.pose[1]:.4f}", f"{s.pose[2]:.2f}",
-                             f"{s.gap_mm:.1f}", f"{s.angle_deg:.1f}", f"{s.axle_mm:.1f}", str(s.missions),
+                             f"{s.gap_mm:.1f}", f"{s.angle_deg:.1f}", f"{s.axle_mm:.1f}", s.wall, str(s.missions),
                              str(s.failed))) for s in starts]
         if not write_rows("python -m harness.start_room", args.rows, lines):
             return EXIT_INPUT

@@ -20,13 +20,24 @@ def test_the_gap_is_the_body_to_the_nearest_wall_as_drawn() -> None:
     wall = next(w for w in scn.arena.walls if w.name == "br_top")  # along y = 0.93, 2 cm thick
     face = wall.a[1] + wall.t / 2.0
     by_hand = (min(py for _, py in footprint(scn.robot, x, y, th)) - face) * 1000.0
-    pose, gap, angle, axle, turn = start_room.measure(NEAR)
+    pose, gap, angle, axle, turn, _ = start_room.measure(NEAR)
     assert gap == pytest.approx(by_hand, abs=0.01)
     assert 0.0 < gap < 5.0
     assert angle == pytest.approx(abs(math.degrees(math.atan2(math.sin(th), math.cos(th)))), abs=0.01)
     assert axle == pytest.approx((y - face) * 1000.0, abs=0.01)  # the axle's nearest wall is the same
     assert turn == pytest.approx(math.hypot(120.0, 100.0))  # the default body: 12 cm front, 20 cm wide
     assert pose[:2] == pytest.approx((x, y))
+
+
+def test_the_wall_is_placed_behind_ahead_or_beside_the_body() -> None:
+    """Seed 105's axle stands 133 mm above the wall along y = 0.93: facing +y the wall is behind
+    (beyond the 100 mm rear face), facing -y ahead (beyond the 120 mm front face), facing +x on
+    the right, facing -x on the left. As measured, the body 17.7 degrees off that wall, beside."""
+    scn = replay_of(NEAR)[0]
+    x, y, th = scn.start
+    sides = {h: start_room._wall_side(scn.arena, scn.robot, x, y, math.radians(h)) for h in (90, -90, 0, 180)}
+    assert sides == {90: "behind", -90: "ahead", 0: "right", 180: "left"}
+    assert start_room.measure(NEAR).wall == ("right" if math.cos(th) > 0.0 else "left")
 
 
 def test_missions_of_one_start_are_one_start_and_bands_count_them(tmp_path: Path) -> None:
@@ -44,7 +55,10 @@ def test_missions_of_one_start_are_one_start_and_bands_count_them(tmp_path: Path
     assert lines[3].split()[1:] == ["1", "2", "100.0%", "0"]
     assert "must move before turning" in lines[5] and "1 starts, 2 missions, 1 succeeded (50.0 %)" in lines[5]
     assert lines[6] == "can turn in place: 1 starts, 2 missions, 2 succeeded (100.0 %)"
-    assert lines[-1].split()[0] == "105" and lines[-1].split()[-1] == "1/2"
+    side = near.wall
+    assert lines[7] == ("failed starts that must move, by where the axle's nearest wall is: "
+                        + ", ".join(f"{w} {int(w == side)}" for w in start_room.WALL_SIDES))
+    assert lines[-1].split()[0] == "105" and lines[-1].split()[-2:] == [side, "1/2"]
 
 
 def test_the_command_prints_the_table_and_writes_rows(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -53,7 +67,8 @@ def test_the_command_prints_the_table_and_writes_rows(tmp_path: Path, capsys: py
     assert start_room.main([str(src), "--rows", str(out)]) == 0
     assert capsys.readouterr().out.startswith("1 start poses, 1 missions, 0 succeeded (0.0 %)")
     lines = out.read_text().splitlines()
-    assert lines[0].split("\t")[:5] == ["seed", "x", "y", "heading_deg", "gap_mm"]
+    assert lines[0].split("\t") == ["seed", "x", "y", "heading_deg", "gap_mm", "angle_deg", "axle_mm", "wall",
+                                    "missions", "failed"]
     assert lines[1].split("\t")[0] == "105" and len(lines) == 2
 
 
