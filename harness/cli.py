@@ -164,7 +164,9 @@ def _scenarios(args: argparse.Namespace, rooms: Sequence[int | None]) -> list[An
 
 
 def _fmt(v: float | None) -> str:
-    return "-" if v is None else f"{v:.1f}"
+    from harness.scoring import seconds_text
+
+    return seconds_text(v)  # as its JSON value prints
 
 
 def _summary(res: Any) -> str:

@@ -16,7 +16,7 @@ from matplotlib.patches import Circle, Polygon  # noqa: E402
 from harness.atomic import atomic_path  # noqa: E402
 from harness.loop import I_CONTACT, I_STATE, Trace  # noqa: E402
 from harness.scenario import Scenario  # noqa: E402
-from harness.scoring import MissionResult  # noqa: E402
+from harness.scoring import MissionResult, seconds_text  # noqa: E402
 from harness.state_colors import UNKNOWN_STATE_COLOR, state_colors  # noqa: E402
 
 
@@ -62,8 +62,8 @@ def draw_mission(ax: plt.Axes, scn: Scenario, trace: Trace, result: MissionResul
         ax.plot(*xy[0], "o", color="white", ms=5, zorder=6)
     title = scn.name
     if result is not None:
-        t1 = "-" if result.time_to_extinguish_s is None else f"{result.time_to_extinguish_s:.1f} s"
-        t2 = "-" if result.total_time_s is None else f"{result.total_time_s:.1f} s"
+        t1 = "-" if result.time_to_extinguish_s is None else f"{seconds_text(result.time_to_extinguish_s)} s"
+        t2 = "-" if result.total_time_s is None else f"{seconds_text(result.total_time_s)} s"
         title = f"{scn.name}: {result.outcome}, out {t1}, home {t2}, contacts {result.wall_contacts}"
     ax.set_title(title, fontsize=9)
     ax.set_xlim(-0.02, arena.size[0] + 0.02)

@@ -21,6 +21,15 @@ from typing import Any
 
 from sim_plant.schema import check, read_toml
 
+TIME_DECIMALS = 3  # a mission's times in its JSON (s)
+
+
+def seconds_text(v: float | None) -> str:
+    """A mission time as tables and pictures print it: to 0.1 s from the value its JSON keeps, so
+    every output (and the acceptance, which reads the JSON) prints one figure. 73.85 s computed
+    lies a hair above 73.85, its JSON value a hair below: 73.8 everywhere, not 73.9 in some."""
+    return "-" if v is None else f"{round(float(v), TIME_DECIMALS):.1f}"
+
 SCORING_FILE = Path(__file__).parent / "data" / "scoring.toml"
 
 
@@ -91,7 +100,7 @@ class MissionResult:
     extra: dict[str, Any] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
-        def r(v: float | None, nd: int = 3) -> float | None:
+        def r(v: float | None, nd: int = TIME_DECIMALS) -> float | None:
             return None if v is None else round(float(v), nd)
 
         out: dict[str, Any] = {

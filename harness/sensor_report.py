@@ -16,6 +16,7 @@ import sys
 
 from harness.loop import run_mission
 from harness.scenario import make_scenario
+from harness.scoring import seconds_text
 from sim_plant.arena import Arena, load_arena
 from sim_plant.broken_pipe import exit_with
 from sim_plant.sensors import NoiseProfile, load_noise_profile
@@ -58,8 +59,8 @@ def rooms() -> None:
         cells = []
         for room in (1, 2, 3, 4):
             r, _ = run_mission(make_scenario(arena=arena, room=room, noise=prof), record=False)
-            ext = "-" if r.time_to_extinguish_s is None else f"{r.time_to_extinguish_s:.1f}"
-            home = "-" if r.total_time_s is None else f"{r.total_time_s:.1f}"
+            ext = seconds_text(r.time_to_extinguish_s)
+            home = seconds_text(r.total_time_s)
             cells.append(f"{ext}/{home} {r.outcome} {r.wall_contacts} {100 * r.min_wall_clearance_m:.1f}")
         print(f"  {name:42s} " + " | ".join(cells), flush=True)
 

@@ -43,6 +43,19 @@ def test_table1_prints_ours_beside_the_paper(tmp_path, capsys) -> None:
     assert [r["room"] for r in rows] == [1, 2, 3, 4]
     assert all(r["outcome"] == "home" for r in rows)
     assert rows[3]["paper_total_time_s"] == 196.3
+    # each time as its JSON value prints it, as the acceptance (which reads the JSON) does
+    line = next(t for t in text.splitlines() if t.startswith("time to put flame out"))
+    assert line.split()[-4:] == [f"{r['time_to_extinguish_s']:.1f}" for r in rows]
+
+
+def test_a_time_on_the_half_prints_as_its_json_value_does() -> None:
+    from harness.cli import _fmt
+
+    # 73.85 s (7,385 ticks of 10 ms) computed lies a hair above 73.85, its JSON value (3 decimals) a
+    # hair below
+    assert 7385 * 0.01 > 73.85 and f"{7385 * 0.01:.1f}" == "73.9"
+    assert _fmt(7385 * 0.01) == _fmt(round(7385 * 0.01, 3)) == f"{73.85:.1f}" == "73.8"
+    assert _fmt(None) == "-"
 
 
 @pytest.mark.parametrize(
