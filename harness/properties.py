@@ -30,6 +30,7 @@ from hypothesis import assume
 from hypothesis import strategies as st
 
 from harness.scenario import Scenario, make_scenario, scenario_to_toml
+from harness.scoring import seconds_text
 from sim_plant.arena import Arena, load_arena
 from sim_plant.errors import CandlePlacementError
 from sim_plant.sensors.noise import AnalogNoise, EncoderNoise, LineNoise, NoiseProfile
@@ -221,7 +222,7 @@ def violations(res: Any) -> list[str]:
     if res.wall_contacts:
         out.append(f"{res.wall_contacts} wall contact(s)")
     if res.time_to_extinguish_s is not None and res.time_to_extinguish_s > FIND_LIMIT_S:
-        out.append(f"flame out after {res.time_to_extinguish_s:.1f} s > {FIND_LIMIT_S:g} s")
+        out.append(f"flame out after {seconds_text(res.time_to_extinguish_s)} s > {FIND_LIMIT_S:g} s")
     if res.time_to_extinguish_s is not None and res.total_time_s is not None \
             and res.total_time_s - res.time_to_extinguish_s > RETURN_LIMIT_S:
         out.append(f"home {res.total_time_s - res.time_to_extinguish_s:.1f} s after the flame, > {RETURN_LIMIT_S:g} s")

@@ -27,8 +27,10 @@ TIME_DECIMALS = 3  # a mission's times in its JSON (s)
 def seconds_text(v: float | None) -> str:
     """A mission time as tables and pictures print it: to 0.1 s from the value its JSON keeps, so
     every output (and the acceptance, which reads the JSON) prints one figure. 73.85 s computed
-    lies a hair above 73.85, its JSON value a hair below: 73.8 everywhere, not 73.9 in some."""
+    (7,385 ticks of 10 ms) lies a hair above 73.85; its JSON value, the float nearest 73.85, a
+    hair below: 73.8 everywhere, not 73.9 in some."""
     return "-" if v is None else f"{round(float(v), TIME_DECIMALS):.1f}"
+
 
 SCORING_FILE = Path(__file__).parent / "data" / "scoring.toml"
 

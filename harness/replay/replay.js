@@ -330,9 +330,9 @@
 
   // ---- header ---------------------------------------------------------------
   (function summary() {
-    const f = (v) => (v === null ? "-" : v.toFixed(1) + " s");
+    const f = (text) => (text === "-" ? text : text + " s");
     $("summary").innerHTML = "outcome <b>" + M.outcome + "</b>" + (M.detail ? " (" + escapeHtml(M.detail) + ")" : "") +
-      " &middot; flame out <b>" + f(T_EXT) + "</b> &middot; home <b>" + f(M.total_time_s) + "</b>" +
+      " &middot; flame out <b>" + f(M.flame_out_text) + "</b> &middot; home <b>" + f(M.home_text) + "</b>" +
       " &middot; wall contacts <b>" + M.wall_contacts + "</b> &middot; candle (" + M.candle.join(", ") + ") m" +
       " &middot; seed " + M.seed;
   })();

@@ -110,8 +110,12 @@ def test_cursor_follows_time(browser_page) -> None:
 
 
 def test_flame_goes_out(browser_page, room1) -> None:
+    from harness.scoring import seconds_text
+
     page, _ = browser_page
     ext = room1.result.time_to_extinguish_s
+    # the header prints the time as the table and the acceptance do
+    assert f"flame out {seconds_text(ext)} s" in page.inner_text("#summary")
     show_time(page, ext - 1.0)
     assert _js(page, _trace_by_uid("flame") + ".visible") is True
     assert page.inner_text("#ro-flame") == "burning"

@@ -96,6 +96,9 @@ def test_flame_goes_out_at_the_extinguish_time() -> None:
     lit = np.asarray(data.frames["lit"])
     assert lit[t < 4.567].all() and not lit[t >= 4.567].any()
     assert data.meta["time_to_extinguish_s"] == 4.567
+    assert data.meta["flame_out_text"] == "4.6"  # the header's figure, as the table prints it
+    # a tie: JavaScript's toFixed would give 40.3, every Python output 40.2
+    assert build_replay(make_scenario(room=1), tr, _result(40.25), fps=10.0).meta["flame_out_text"] == "40.2"
     never = build_replay(make_scenario(room=1), tr, _result(None), fps=10.0)
     assert all(never.frames["lit"]) and never.meta["time_to_extinguish_s"] is None
 
