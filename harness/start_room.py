@@ -94,9 +94,8 @@ def _nearest_wall(poly: np.ndarray, arena: Arena) -> tuple[float, int]:
 def _wall_side(arena: Arena, robot: RobotParams, x: float, y: float, th: float) -> str:
     """Where the wall point nearest (x, y) lies in the body's frame: beyond the front or rear face,
     else on the left or right."""
-    polys = np.asarray(arena.wall_polys, dtype=float)
-    a = polys.reshape(-1, 2)
-    ab = np.roll(polys, -1, axis=1).reshape(-1, 2) - a
+    e = arena.wall_edges  # the walls' faces as segments (x1, y1, x2, y2), derived once by the arena
+    a, ab = e[:, 0:2], e[:, 2:4] - e[:, 0:2]
     t = np.clip(((x - a[:, 0]) * ab[:, 0] + (y - a[:, 1]) * ab[:, 1]) / np.maximum((ab * ab).sum(axis=1), 1e-18),
                 0.0, 1.0)
     q = a + t[:, None] * ab

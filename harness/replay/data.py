@@ -21,7 +21,7 @@ import numpy as np
 
 from harness.loop import I_CONTACT, I_FAN, I_PWM_L, I_PWM_R, I_SENS, I_STATE, Trace
 from harness.scenario import Scenario
-from harness.scoring import MissionResult, seconds_text
+from harness.scoring import TIME_DECIMALS, MissionResult, seconds_text
 from harness.state_colors import state_colors
 from sim_plant.robot import IR_NAMES, RobotParams
 from sim_plant.sensors.channels import CH_ENC_L, CH_ENC_R, CH_FLAME_L, CH_FLAME_R, CH_IR, CH_LINE
@@ -323,8 +323,8 @@ def build_replay(scn: Scenario, trace: Trace, result: MissionResult, fps: float 
         "candle": [round(scn.candle[0], 4), round(scn.candle[1], 4)],
         "outcome": result.outcome,
         "detail": result.detail,
-        "time_to_extinguish_s": None if ext is None else round(float(ext), 3),
-        "total_time_s": None if result.total_time_s is None else round(float(result.total_time_s), 3),
+        "time_to_extinguish_s": None if ext is None else round(float(ext), TIME_DECIMALS),
+        "total_time_s": None if result.total_time_s is None else round(float(result.total_time_s), TIME_DECIMALS),
         # the header's figures as every other output prints them (JavaScript's toFixed rounds a
         # tie, 40.25, up where Python gives 40.2)
         "flame_out_text": seconds_text(ext),
