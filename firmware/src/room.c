@@ -313,7 +313,13 @@ static uint8_t on_enter_line(ffr_state_t *st, room_tick_t *t)
     ffr_room_state_t *r = &st->room;
     uint8_t next = RP_STAY;
     r->entry_flame = t->sig > r->entry_flame ? t->sig : r->entry_flame;
-    if (st->lines.edge) {
+    /* the line's edge, or the line already under the sensor: a turn into
+     * the door that ends late (a heading drifted on the way) brings the
+     * sensor onto the line as it turns, and no edge comes from a line
+     * already under it (realistic robot 5007: "doorway line not found" in
+     * 38 of its 40 missions; docs/robustness.md). As the way out counts a
+     * line crossed turning (on_face_out) */
+    if (st->lines.edge || st->lines.level) {
         st->flags |= FFR_FLAG_IN_ROOM;
         /* the line is under the line sensor, ahead of the origin */
         r->line_x_mm = st->odo.x_mm + cfg->line_sensor_x_mm * ffr_cosf(st->odo.heading_rad);

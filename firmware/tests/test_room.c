@@ -732,9 +732,74 @@ TEST(a_flame_seen_from_the_aside_point_is_approached)
     CHECK((r.out.flags & FFR_FLAG_FAILED) == 0);
 }
 
+/* A TURN step into the door, then the room. The line comes under the line
+ * sensor `on_at` ticks into the turn and leaves it `off_after` ticks after
+ * the entry begins (-1: before it begins, the line passed by as it turned). */
+static void turn_onto_the_line(rig_t *r, ffr_config_t *cfg, int on_at, int off_after)
+{
+    int i;
+    ffr_config_default(cfg);
+    cfg->home_wall_side = FFR_HOME_AS_PLACED;
+    cfg->route[0].op = FFR_OP_TURN;
+    cfg->route[0].side = FFR_SIDE_NONE;
+    cfg->route[0].param = -90;
+    cfg->route[1].op = FFR_OP_ROOM;
+    cfg->route[1].arg = 1;
+    cfg->route[2].op = FFR_OP_END;
+    cfg->route_len = 3;
+    rig_init(r, cfg);
+    r->in.start = 1;
+    rig_tick(r);
+    for (i = 0; i < 400 && r->out.state == FFR_ST_TURN; ++i) {
+        r->in.line = i >= on_at && (off_after >= 0 || i < on_at + 6) ? 1u : 0u;
+        rig_tick(r);
+    }
+    for (i = 0; i < off_after; ++i) {
+        rig_tick(r);
+    }
+    r->in.line = 0;
+}
+
+TEST(a_line_under_the_sensor_as_the_entry_begins_is_the_doorway_line)
+{
+    /* a turn into the door ending late brings the sensor onto the line as
+     * it turns: its edge came in the turn, none comes in the entry. Over
+     * when in the turn it came and how long it stays under the sensor */
+    static const int on_at[] = {2, 10, 25};
+    static const int stays[] = {1, 3, 8};
+    unsigned a, b;
+    for (a = 0; a < sizeof(on_at) / sizeof(on_at[0]); ++a) {
+        for (b = 0; b < sizeof(stays) / sizeof(stays[0]); ++b) {
+            ffr_config_t cfg;
+            rig_t r;
+            turn_onto_the_line(&r, &cfg, on_at[a], stays[b]);
+            CHECK(r.st.lines.count == 1u); /* one line, counted in the turn */
+            CHECK(rig_run_until_state(&r, FFR_ST_SCAN, 800));
+            CHECK((r.out.flags & FFR_FLAG_IN_ROOM) != 0);
+            CHECK((r.out.flags & FFR_FLAG_FAILED) == 0);
+        }
+    }
+}
+
+TEST(a_line_passed_while_turning_is_not_the_doorway_line)
+{
+    /* under the sensor for a few ticks of the turn and gone before the
+     * entry begins: the entry still looks for its line, and fails without */
+    ffr_config_t cfg;
+    rig_t r;
+    turn_onto_the_line(&r, &cfg, 2, -1);
+    CHECK(r.st.lines.count == 1u);
+    CHECK(r.st.lines.level == 0u);
+    CHECK(rig_run_until_state(&r, FFR_ST_FAILED, 3000));
+    CHECK(r.out.fail_code == FFR_FAIL_NO_LINE);
+    CHECK((r.out.flags & FFR_FLAG_IN_ROOM) == 0);
+}
+
 SUITE(room,
       TEST_REF(no_doorway_line_on_the_way_in_fails_no_line),
       TEST_REF(no_doorway_line_on_the_way_out_fails_no_line),
+      TEST_REF(a_line_under_the_sensor_as_the_entry_begins_is_the_doorway_line),
+      TEST_REF(a_line_passed_while_turning_is_not_the_doorway_line),
       TEST_REF(a_flame_the_fans_never_put_out_fails_not_out),
       TEST_REF(a_flame_that_keeps_coming_back_fails_not_out),
       TEST_REF(an_approached_flame_lost_and_not_found_again_fails_lost_flame),
