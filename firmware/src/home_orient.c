@@ -2137,6 +2137,52 @@ static int first_step(ffr_state_t *st, int side)
     return 1;
 }
 
+/* The sweep's stop for something within the turning circle: away from it
+ * (start_escape: `d` mm off in the body's direction (nx, ny)), then the
+ * sweep again. A hard stop, not the speed ramp's: at the sweep's full rate
+ * the ramp (accel_mm_s2) lets the body turn on ~20 degrees, and a wall's
+ * end seen this late is within that (a corner beside the body, in no
+ * ranger's beam until the turn brings its wall round). The wheels'
+ * references and position integrals cleared, the speed loop brakes on the
+ * measured speed at once */
+static void sweep_escape(ffr_state_t *st, float d, float nx, float ny)
+{
+    ffr_stop(st);
+    ffr_speed_reset(&st->speed);
+    start_escape(st, ffr_orient_turn_radius_mm(&st->cfg) + CLEAR_MARGIN_MM, d, nx, ny);
+}
+
+/* A ranger on the side the sweep turns toward come down to its span's
+ * bottom as the body turns (issue 13, 2 Dec): a face crossing its beam
+ * within ~10 cm, just off that side's corner. Its hit lies outside the
+ * turning circle (the corner rangers' shortest hit is ~200 mm off the axle),
+ * so the wall-line test above does not stop for it, but the face it belongs
+ * to runs on toward the body: a corner of the home hallway's block beside
+ * the front corner, a wall behind the rear corner (nominal start seeds 6500,
+ * 6779, 7431: the corner met 2-20 degrees of turn later). Only at the
+ * bottom (SWEEP_BOTTOM_MM above ir_min_mm): a part reading 105-110 there
+ * took moves the turn did not need and lost more starts than it saved
+ * (docs/robustness.md, "A ranger at its bottom in the sweep"). Not on the
+ * first SWEEP_BOTTOM_AFTER_DEG: what the rangers read before the turn is
+ * the clearance's to judge (clear_step). The ranger (its index), or -1. */
+#define SWEEP_BOTTOM_MM 0.5f
+#define SWEEP_BOTTOM_AFTER_DEG 1.0f
+/* where the near face is taken to be, off the axle toward that ranger: just
+ * inside the front corners' circle (156 mm), so the move away is ~47 mm */
+#define SWEEP_BOTTOM_AT_MM 150.0f
+static int sweep_side_at_bottom(const ffr_state_t *st, float sweep)
+{
+    int i;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        /* on the turning side: its beam's sideways part the sweep's sign */
+        if (st->ir_geom.beam_sin[i] * sweep > 0.5f * ffr_absf(sweep) &&
+            st->ir_mm[i] <= st->cfg.ir_min_mm + SWEEP_BOTTOM_MM) {
+            return i;
+        }
+    }
+    return -1;
+}
+
 int ffr_orient_step(ffr_state_t *st)
 {
     const ffr_config_t *cfg = &st->cfg;
@@ -2226,17 +2272,15 @@ int ffr_orient_step(ffr_state_t *st)
             float c = ffr_cosf(st->odo.heading_rad), sn = ffr_sinf(st->odo.heading_rad);
             float bx = (c * o->near_x_mm + sn * o->near_y_mm) / o->near_mm;
             float by = (c * o->near_y_mm - sn * o->near_x_mm) / o->near_mm;
-            /* and a hard stop, not the speed ramp's: at the sweep's full
-             * rate the ramp (accel_mm_s2) lets the body turn on ~20 degrees,
-             * and a wall's end seen this late is within that (a corner
-             * beside the body, in no ranger's beam until the turn brings
-             * its wall round). The wheels' references and position
-             * integrals cleared, the speed loop brakes on the measured
-             * speed at once */
-            ffr_stop(st);
-            ffr_speed_reset(&st->speed);
-            start_escape(st, ffr_orient_turn_radius_mm(cfg) + CLEAR_MARGIN_MM, o->near_mm, bx, by);
+            sweep_escape(st, o->near_mm, bx, by);
             return 0;
+        }
+        if (o->escapes < ESCAPE_TRIES && done > SWEEP_BOTTOM_AFTER_DEG * FFR_DEG) {
+            int at_bottom = sweep_side_at_bottom(st, sweep);
+            if (at_bottom >= 0) {
+                sweep_escape(st, SWEEP_BOTTOM_AT_MM, st->ir_geom.beam_cos[at_bottom], st->ir_geom.beam_sin[at_bottom]);
+                return 0;
+            }
         }
         if (done < ffr_absf(sweep) - 2.0f * FFR_DEG) {
             /* on at full turn rate past the end: no slowing down to stop there */

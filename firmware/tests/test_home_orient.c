@@ -1360,6 +1360,85 @@ TEST(a_wall_line_in_the_sweep_brakes_at_once)
     CHECK(pwm[1] > 0);
 }
 
+/* The sweep turning right (home_wall_side), `done` degrees into it, the
+ * rangers reading ir (mm); one orientation tick. The phase after it. */
+static uint8_t sweep_tick_reading(rig_t *r, ffr_config_t *cfg, const float ir[FFR_IR_COUNT], float done_deg,
+                                  uint8_t escapes)
+{
+    int i;
+    ffr_config_default(cfg);
+    rig_init(r, cfg);
+    r->st.cfg.home_wall_side = FFR_HOME_WALL_RIGHT;
+    ffr_orient_begin(&r->st);
+    ffr_orient_reset(&r->st.orient, &r->st.odo);
+    r->st.orient.phase = 0u; /* PH_SWEEP */
+    r->st.orient.escapes = escapes;
+    r->st.odo.heading_rad = -done_deg * FFR_DEG;
+    for (i = 0; i < FFR_IR_COUNT; ++i) {
+        r->st.ir_mm[i] = ir[i];
+    }
+    ffr_ir_geom_update(&r->st.ir_geom, &r->st.cfg, r->st.ir_mm);
+    r->st.speed.v_ref[0] = 290.0f;
+    r->st.speed.v_ref[1] = -290.0f;
+    CHECK(ffr_orient_step(&r->st) == 0);
+    return r->st.orient.phase;
+}
+
+TEST(a_ranger_on_the_sweeps_side_at_its_bottom_stops_the_sweep)
+{
+    /* turning right, a right ranger comes down to its span's bottom: a
+     * face just off that corner, whose wall runs on toward the body. A
+     * hard stop, then straight away from it: back from the front corner's,
+     * forward from the rear corner's. Over the turn's extent and the
+     * ranger's bottom reading and just above it */
+    static const int side[2] = {FFR_IR_RF, FFR_IR_RR};
+    static const float done[3] = {5.0f, 40.0f, 90.0f};
+    unsigned k, j;
+    for (k = 0; k < 2; ++k) {
+        for (j = 0; j < 3; ++j) {
+            ffr_config_t cfg;
+            rig_t r;
+            float ir[FFR_IR_COUNT];
+            rig_no_walls(&cfg, ir);
+            ir[side[k]] = 100.0f; /* ir_min_mm: the span's bottom */
+            CHECK(sweep_tick_reading(&r, &cfg, ir, done[j], 0u) == 8u); /* PH_ESCAPE */
+            CHECK(r.st.orient.escapes == 1u);
+            CHECK(r.st.orient.leg == 0u);                                /* straight */
+            CHECK(r.st.orient.reverse == (side[k] == FFR_IR_RF ? 1u : 0u)); /* away from it */
+            CHECK(r.st.orient.goal_mm - r.st.odo.dist_mm > 40.0f && r.st.orient.goal_mm - r.st.odo.dist_mm < 55.0f);
+            CHECK_NEAR(r.st.speed.v_ref[0], 0.0f, 1e-6f); /* the hard stop */
+            CHECK_NEAR(r.st.speed.v_ref[1], 0.0f, 1e-6f);
+            /* a part reading 2 mm above the bottom: the sweep turns on */
+            ir[side[k]] = 102.0f;
+            CHECK(sweep_tick_reading(&r, &cfg, ir, done[j], 0u) == 0u);
+            CHECK(r.st.cmd_w_rad_s < 0.0f);
+        }
+    }
+}
+
+TEST(a_ranger_at_its_bottom_off_the_sweeps_side_or_late_does_not_stop_it)
+{
+    ffr_config_t cfg;
+    rig_t r;
+    float ir[FFR_IR_COUNT];
+    int i;
+    /* the other side's (the turn takes its corners away) and the centre's */
+    static const int others[3] = {FFR_IR_LF, FFR_IR_LR, FFR_IR_CF};
+    for (i = 0; i < 3; ++i) {
+        rig_no_walls(&cfg, ir);
+        ir[others[i]] = 100.0f;
+        CHECK(sweep_tick_reading(&r, &cfg, ir, 40.0f, 0u) == 0u);
+        CHECK(r.st.cmd_w_rad_s < 0.0f);
+    }
+    /* on the turn's first degree: the clearance judged what was read before it */
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_RF] = 100.0f;
+    CHECK(sweep_tick_reading(&r, &cfg, ir, 0.5f, 0u) == 0u);
+    /* the escapes spent: the sweep goes ahead regardless */
+    CHECK(sweep_tick_reading(&r, &cfg, ir, 40.0f, 4u) == 0u);
+    CHECK(r.st.cmd_w_rad_s < 0.0f);
+}
+
 TEST(the_sweep_turns_away_from_a_wall_beside)
 {
     /* escapes spent with a wall beside within the turning circle: the sweep
@@ -1947,8 +2026,8 @@ typedef struct {
     int probed_back; /* a probe backward (PH_PROBE) began                       */
     int unfolded;   /* unfold_front's move back after its probe (LEG_ALONG) began */
     float x_min;    /* how far back it went before the sweep (odometry x)       */
-    float probe_start_x; /* where the first probe began (odometry x)            */
     float probe_end_x; /* where the last probe ended (odometry x)               */
+    float probe_drift; /* the most any probe ended from where it began (mm)    */
     int back_after_unfold; /* a straight move back for the S (LEG_BACK, LEG_BACK_S)
                               began after unfold_front's move back            */
     int s_after_unfold; /* an S began after it (its first arc, either way)     */
@@ -1965,6 +2044,7 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
     float ir[FFR_IR_COUNT];
     orient_run_t run = {1, 0, -1, 0, 0, 0.0f, 0, 0, 0, 0.0f, 0.0f, 0.0f, 0, 0, 0};
     int i, swept = 0, probing = 0;
+    float this_probe_x = 0.0f;
     rig_init(&r, cfg);
     r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
     r.in.start = 1;
@@ -1981,18 +2061,21 @@ static orient_run_t orient_run_read(const ffr_config_t *cfg, const float box[][3
         if (r.out.state != FFR_ST_ORIENT && i > 2) {
             break;
         }
-        if (!run.probed && o->phase == 9u) {
-            run.probe_start_x = r.st.odo.x_mm;
-            run.probed = 1;
-        }
+        run.probed |= o->phase == 9u;
         run.probed_back |= o->phase == 9u && o->reverse;  /* PH_PROBE */
         if (run.unfolded && o->phase == 8u) { /* PH_ESCAPE after LEG_ALONG's move */
             run.back_after_unfold |= o->leg == 5u || o->leg == 8u;
             run.s_after_unfold |= s_first_arc(o);
         }
         run.unfolded |= o->phase == 8u && o->leg == 11u; /* PH_ESCAPE, LEG_ALONG */
+        if (!probing && o->phase == 9u) {
+            this_probe_x = r.st.odo.x_mm;
+        }
         if (probing && o->phase != 9u) {
             run.probe_end_x = r.st.odo.x_mm;
+            if (ffr_absf(r.st.odo.x_mm - this_probe_x) > run.probe_drift) {
+                run.probe_drift = ffr_absf(r.st.odo.x_mm - this_probe_x);
+            }
         }
         probing = o->phase == 9u;
         swept |= i > 0 && o->phase == 0u; /* PH_SWEEP */
@@ -2350,7 +2433,7 @@ TEST(the_looks_probe_finding_the_wall_as_read_returns_to_where_it_stood)
             continue; /* no probe: not near even if folded back */
         }
         probed++;
-        CHECK(ffr_absf(run.probe_end_x - run.probe_start_x) < 3.0f);
+        CHECK(run.probe_drift < 3.0f); /* every probe back where it began */
         CHECK(run.x_min > -3.0f); /* forward and back: never behind where it began */
     }
     CHECK(probed >= 4);
@@ -2394,7 +2477,7 @@ TEST(a_wall_ahead_read_as_it_is_gets_the_probe_and_no_move_back)
     for (v0 = 40.0f; v0 <= 120.0f; v0 += 40.0f) {
         run = orient_run_read(&cfg, b, 2, 1, v0);
         CHECK(run.probed_back && !run.unfolded);
-        CHECK(ffr_absf(run.probe_end_x - run.probe_start_x) < 3.0f);
+        CHECK(run.probe_drift < 3.0f); /* every probe back where it began */
     }
 }
 
@@ -2715,6 +2798,8 @@ SUITE(home_orient,
       TEST_REF(a_far_wall_end_beside_the_way_does_not_close_it),
       TEST_REF(the_front_shut_straight_back_before_the_s),
       TEST_REF(a_wall_line_in_the_sweep_brakes_at_once),
+      TEST_REF(a_ranger_on_the_sweeps_side_at_its_bottom_stops_the_sweep),
+      TEST_REF(a_ranger_at_its_bottom_off_the_sweeps_side_or_late_does_not_stop_it),
       TEST_REF(the_sweep_turns_away_from_a_wall_beside),
       TEST_REF(the_sweep_turns_away_from_a_front_corner_read_folded_back),
       TEST_REF(the_sweep_turns_toward_a_front_corner_read_folded_back_with_the_centre),
