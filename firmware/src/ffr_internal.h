@@ -407,6 +407,11 @@ int ffr_orient_clearance(const ffr_config_t *cfg, const ffr_ir_geom_t *g, const 
  * no line through two rangers both in `not_both`, nor through one in
  * `not_any` unless the other reads at its span's bottom */
 #define FFR_FOLD_MAX_MM 160.0f
+/* The orientation's moves away from walls before its sweep goes ahead
+ * regardless (home_orient.c; the tests set the count spent). 4 until 2 Dec
+ * 2026; 8 since: more starts near a wall get clear before they turn
+ * (docs/robustness.md, "More tries before the sweep goes ahead") */
+#define FFR_ORIENT_ESCAPE_TRIES 8u
 /* A front corner ranger's beam leaves the body through its side 42 mm from
  * the ranger ((half width - 70 mm) / sin 45 degrees, the default layout): a
  * wall folded back nearer than that would be inside the body, and one that

@@ -121,7 +121,7 @@
 #define LINE_REACH_MM 200.0f      /* a wall seen may reach this far on unseen     */
 #define ARC_BAND_MM 30.0f         /* an arc's path: the half width plus this       */
 #define ESCAPE_START_MM 0.0f      /* the front shut: less room than this beyond ESCAPE_FREE_MM (chosen) */
-#define ESCAPE_TRIES 4u           /* moves before the sweep goes ahead regardless  */
+#define ESCAPE_TRIES FFR_ORIENT_ESCAPE_TRIES /* moves before the sweep goes ahead regardless */
 #define BESIDE_REAR_MM 30.0f      /* a rear ranger this far above its span's bottom: the wall beside */
 #define LEG_PROBE_RETURN 4u       /* the probe's way back to where it stood (nothing folded back) */
 #define LEG_ALONG_RETURN 10u      /* the same for unfold_front's probe, retracing its way */

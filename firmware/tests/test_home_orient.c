@@ -1435,7 +1435,7 @@ TEST(a_ranger_at_its_bottom_off_the_sweeps_side_or_late_does_not_stop_it)
     ir[FFR_IR_RF] = 100.0f;
     CHECK(sweep_tick_reading(&r, &cfg, ir, 0.5f, 0u) == 0u);
     /* the escapes spent: the sweep goes ahead regardless */
-    CHECK(sweep_tick_reading(&r, &cfg, ir, 40.0f, 4u) == 0u);
+    CHECK(sweep_tick_reading(&r, &cfg, ir, 40.0f, FFR_ORIENT_ESCAPE_TRIES) == 0u);
     CHECK(r.st.cmd_w_rad_s < 0.0f);
 }
 
@@ -1480,7 +1480,7 @@ TEST(the_sweep_turns_away_from_a_wall_beside)
         feed(&r, &cfg, ir);
         rig_tick(&r); /* the readings in */
         ffr_orient_begin(&r.st);
-        r.st.orient.escapes = 4u;
+        r.st.orient.escapes = FFR_ORIENT_ESCAPE_TRIES;
         CHECK(ffr_orient_step(&r.st) == 0);
         CHECK(r.st.orient.sweep_side == 1);
         CHECK(r.st.cmd_w_rad_s > 0.0f);
@@ -2388,10 +2388,10 @@ TEST(a_wall_ahead_read_folded_back_in_a_corner_is_backed_from_first)
         feed(&r, &cfg, ir);
         rig_tick(&r); /* the readings in */
         ffr_orient_begin(&r.st);
-        r.st.orient.escapes = 3u;
+        r.st.orient.escapes = FFR_ORIENT_ESCAPE_TRIES - 1u;
         r.st.started = 1;
         rig_tick(&r);
-        CHECK(r.st.orient.escapes == 4u && r.st.orient.phase != 9u); /* not PH_PROBE */
+        CHECK(r.st.orient.escapes == FFR_ORIENT_ESCAPE_TRIES && r.st.orient.phase != 9u); /* not PH_PROBE */
         /* the centre ranger known folded back from another move (as a
          * front fold move leaves it), the probe done: no move back follows
          * the refused S (only unfold_front's own probe's finding starts it) */
@@ -2542,7 +2542,7 @@ static void fold_move_watched(rig_t *r, const ffr_config_t *cfg, int kind)
     /* as the rear fold move leaves it, 14 mm on */
     r->st.orient.phase = 8u;  /* PH_ESCAPE */
     r->st.orient.leg = 6u;    /* LEG_FOLD */
-    r->st.orient.escapes = kind == LAST_MOVE ? 4u : 1u; /* ESCAPE_TRIES */
+    r->st.orient.escapes = kind == LAST_MOVE ? FFR_ORIENT_ESCAPE_TRIES : 1u;
     r->st.orient.reverse = kind == BACKWARD ? 1u : 0u;
     r->st.orient.target_rad = 0.0f;
     r->st.orient.leg_mm = 45.0f;
@@ -2666,7 +2666,7 @@ TEST(a_line_across_a_corner_first_steps_forward_when_the_floor_allows)
             CHECK(ffr_absf(o->goal_mm - r.st.odo.dist_mm - 45.0f) < 0.5f);
             CHECK(o->escapes == 1u);
         } else {
-            CHECK(o->escapes == 4u); /* ESCAPE_TRIES: given up, the sweep next */
+            CHECK(o->escapes == FFR_ORIENT_ESCAPE_TRIES); /* given up, the sweep next */
             CHECK(o->phase == 7u);   /* PH_CLEAR */
         }
     }
