@@ -2156,27 +2156,27 @@ static void sweep_escape(ffr_state_t *st, float d, float nx, float ny)
  * bottom as the body turns (issue 13, 2 Dec): a face crossing its beam
  * within ~10 cm, just off that side's corner. Its hit lies outside the
  * turning circle (the corner rangers' shortest hit is ~200 mm off the axle),
- * so the wall-line test above does not stop for it, but the face it belongs
- * to runs on toward the body: a corner of the home hallway's block beside
- * the front corner, a wall behind the rear corner (nominal start seeds 6500,
- * 6779, 7431: the corner met 2-20 degrees of turn later). Only at the
- * bottom (SWEEP_BOTTOM_MM above ir_min_mm): a part reading 105-110 there
- * took moves the turn did not need and lost more starts than it saved
- * (docs/robustness.md, "A ranger at its bottom in the sweep"). Not on the
- * first SWEEP_BOTTOM_AFTER_DEG: what the rangers read before the turn is
- * the clearance's to judge (clear_step). The ranger (its index), or -1. */
-#define SWEEP_BOTTOM_MM 0.5f
+ * so the sweep's wall-line test does not stop for it, but the face it
+ * belongs to runs on toward the body: a corner of the home hallway's block
+ * beside the front corner, a wall behind the rear corner (nominal start
+ * seeds 6500, 6779, 7431: the corner met 2-20 degrees of turn later). Only
+ * at the bottom (within 0.5 mm of ir_min_mm, as elsewhere here): a part
+ * reading 105-110 there took moves the turn did not need and lost more
+ * starts than it saved (docs/robustness.md, "A ranger at its bottom in the
+ * sweep"). Not on the first SWEEP_BOTTOM_AFTER_DEG: what the rangers read
+ * before the turn is the clearance's to judge (clear_step). The ranger (its
+ * index), or -1. */
 #define SWEEP_BOTTOM_AFTER_DEG 1.0f
 /* where the near face is taken to be, off the axle toward that ranger: just
  * inside the front corners' circle (156 mm), so the move away is ~47 mm */
 #define SWEEP_BOTTOM_AT_MM 150.0f
 static int sweep_side_at_bottom(const ffr_state_t *st, float sweep)
 {
+    /* the turning side's rangers: beams within 60 degrees of that side */
+    uint8_t side = beams_toward(&st->ir_geom, 0.0f, sweep > 0.0f ? 1.0f : -1.0f, 0.5f);
     int i;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
-        /* on the turning side: its beam's sideways part the sweep's sign */
-        if (st->ir_geom.beam_sin[i] * sweep > 0.5f * ffr_absf(sweep) &&
-            st->ir_mm[i] <= st->cfg.ir_min_mm + SWEEP_BOTTOM_MM) {
+        if ((side >> i) & 1 && st->ir_mm[i] <= st->cfg.ir_min_mm + 0.5f) {
             return i;
         }
     }

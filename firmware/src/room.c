@@ -318,7 +318,7 @@ static uint8_t on_enter_line(ffr_state_t *st, room_tick_t *t)
      * sensor onto the line as it turns, and no edge comes from a line
      * already under it (realistic robot 5007: "doorway line not found" in
      * 38 of its 40 missions; docs/robustness.md). As the way out counts a
-     * line crossed turning (on_face_out) */
+     * line crossed turning (on_leave_turn, LEAVE_ON_LINE_MM) */
     if (st->lines.edge || st->lines.level) {
         st->flags |= FFR_FLAG_IN_ROOM;
         /* the line is under the line sensor, ahead of the origin */
