@@ -326,12 +326,14 @@ void ffr_drive_corridor(ffr_state_t *st, uint8_t side, float speed);
  * command (cmd_w_rad_s) plus the leaving guard's push off it, within the
  * turn rate. Called by the corridor driving and the route's last stretches. */
 void ffr_corridor_guard(ffr_state_t *st);
-/* route.c: out of a room, odometry's heading set square to the wall ahead when far off it */
-int ffr_square_on_wall_ahead(ffr_state_t *st);
 /* route.exit_wall_rad when no wall alongside the way out was seen */
 #define FFR_EXIT_WALL_NONE 10.0f
+/* route.c: the wall alongside the way out of a room, watched (exit_wall_rad) */
 void ffr_exit_wall_watch(ffr_state_t *st);
-int ffr_square_on_wall_beside(ffr_state_t *st);
+/* route.c: out of a room, odometry's heading set square to the wall ahead
+ * when far off it, else to the wall alongside unless the wall ahead
+ * disagrees; exit_wall_rad consumed */
+void ffr_square_out_of_room(ffr_state_t *st);
 void ffr_drive_heading(ffr_state_t *st, float heading, float speed);
 /* straight on route.heading_ref_rad, it and odometry trued up by the walls beside */
 void ffr_drive_held(ffr_state_t *st, float speed);

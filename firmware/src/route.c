@@ -196,11 +196,14 @@ static float trimmed(float off, float keep_rad)
     return off > 0.0f ? off - keep_rad : off + keep_rad;
 }
 
-int ffr_square_on_wall_ahead(ffr_state_t *st)
+/* The wall ahead's angle less odometry's heading off the held one: what
+ * odometry's heading is short of the truth (*off, rad); 0 if the three
+ * front hits are not one straight wall across. */
+static int wall_ahead_off(const ffr_state_t *st, float *off)
 {
     const ffr_config_t *cfg = &st->cfg;
     const ffr_ir_geom_t *g = &st->ir_geom;
-    float xl, yl, xr, yr, xc, wall, held, off;
+    float xl, yl, xr, yr, xc, wall, held;
     if (!ffr_ir_valid(cfg, st->ir_mm[FFR_IR_LF]) || !ffr_ir_valid(cfg, st->ir_mm[FFR_IR_RF])
         || !ffr_ir_valid(cfg, st->ir_mm[FFR_IR_CF])) {
         return 0;
@@ -224,10 +227,7 @@ int ffr_square_on_wall_ahead(ffr_state_t *st)
         return 0;
     }
     held = ffr_wrap_pi(st->odo.heading_rad - st->route.heading_ref_rad);
-    off = wall - held; /* what odometry's heading is short of the truth */
-    if (ffr_absf(off) > SQUARE_MIN_DEG * FFR_DEG) {
-        st->odo.heading_rad += trimmed(off, SQUARE_KEEP_DEG * FFR_DEG);
-    }
+    *off = wall - held;
     return 1;
 }
 
@@ -260,17 +260,34 @@ void ffr_exit_wall_watch(ffr_state_t *st)
     }
 }
 
-int ffr_square_on_wall_beside(ffr_state_t *st)
+/*
+ * Out of a room: odometry's heading squared on the wall ahead when that
+ * reads it far off (beyond SQUARE_MIN_DEG); else on the wall alongside the
+ * way out, unless the wall ahead, read within its parts' bias, says the
+ * error runs the other way. A robot whose odometry was 15 degrees short
+ * leaving room 2 read the wall ahead 10.5 degrees off (two parts' bias
+ * took 4) and the wall beside 11.4: neither alone was taken before, since
+ * the wall beside was only asked when the wall ahead could not be read
+ * (docs/firmware.md, "Squared on the wall alongside the way out").
+ */
+void ffr_square_out_of_room(ffr_state_t *st)
 {
-    float e = st->route.exit_wall_rad;
+    float off = 0.0f, e = st->route.exit_wall_rad;
+    int ahead = wall_ahead_off(st, &off);
     st->route.exit_wall_rad = FFR_EXIT_WALL_NONE;
+    if (ahead && ffr_absf(off) > SQUARE_MIN_DEG * FFR_DEG) {
+        st->odo.heading_rad += trimmed(off, SQUARE_KEEP_DEG * FFR_DEG);
+        return;
+    }
     if (e == FFR_EXIT_WALL_NONE || ffr_absf(e) > EXIT_MAX_DEG * FFR_DEG || ffr_absf(e) < EXIT_MIN_DEG * FFR_DEG) {
-        return 0;
+        return;
     }
     /* the wall's direction is e off the held heading in odometry's frame:
-     * odometry's heading is e too far the same way */
+     * odometry's heading is e too far the same way, i.e. short by -e */
+    if (ahead && off * e >= 0.0f) {
+        return; /* the wall ahead reads it short the other way, or not at all */
+    }
     st->odo.heading_rad -= trimmed(e, EXIT_KEEP_DEG * FFR_DEG);
-    return 1;
 }
 
 static int event_fired(ffr_state_t *st, const ffr_step_t *s)
@@ -368,10 +385,7 @@ void ffr_route_step(ffr_state_t *st, const ffr_inputs_t *in)
             st->route.exit_wall_rad = FFR_EXIT_WALL_NONE;
             break;
         case FFR_ROOM_LEFT:
-            if (!ffr_square_on_wall_ahead(st)) {
-                (void)ffr_square_on_wall_beside(st);
-            }
-            st->route.exit_wall_rad = FFR_EXIT_WALL_NONE;
+            ffr_square_out_of_room(st);
             st->rooms_searched = (uint8_t)(st->rooms_searched + 1u);
             if (st->flags & FFR_FLAG_EXTINGUISHED) {
                 st->returning = 1;

@@ -236,7 +236,7 @@ TEST(the_last_stretch_past_an_opening_keeps_a_front_corner_off_a_wall)
 
 
 /* Out of a room, facing the corridor's far wall (route.c,
- * ffr_square_on_wall_ahead): the robot truly turned `psi` off the wall's
+ * ffr_square_out_of_room, no wall seen beside): the robot truly turned `psi` off the wall's
  * normal while odometry holds the exit heading. An angle within
  * SQUARE_MIN_DEG (13) changes nothing (two parts' bias); beyond it, odometry
  * is set to within SQUARE_KEEP_DEG (4) of the wall's angle, either side. A
@@ -261,7 +261,8 @@ static float square_after(float psi, float d_mm, float c_extra_mm, int drop_c)
     r.st.ir_mm[FFR_IR_CF] = drop_c ? FFR_IR_NONE(&cfg)
                                    : reading(&cfg, FFR_IR_CF, ffr_cosf(psi), -ffr_sinf(psi), d_mm) + c_extra_mm;
     rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
-    ffr_square_on_wall_ahead(&r.st);
+    r.st.route.exit_wall_rad = FFR_EXIT_WALL_NONE;
+    ffr_square_out_of_room(&r.st);
     return r.st.odo.heading_rad - ref0;
 }
 
@@ -279,7 +280,8 @@ static float square_through_a_door(void)
     r.st.ir_mm[FFR_IR_LF] = 716.0f;
     r.st.ir_mm[FFR_IR_RF] = 173.0f;
     rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
-    ffr_square_on_wall_ahead(&r.st);
+    r.st.route.exit_wall_rad = FFR_EXIT_WALL_NONE;
+    ffr_square_out_of_room(&r.st);
     return r.st.odo.heading_rad;
 }
 
@@ -308,7 +310,7 @@ TEST(out_of_a_room_the_heading_is_set_square_to_the_wall_ahead_when_far_off)
 }
 
 /* Out of a room along a wall (route.c, ffr_exit_wall_watch and
- * ffr_square_on_wall_beside): the robot drives 400 mm out holding the exit
+ * ffr_square_out_of_room, no wall ahead): the robot drives 400 mm out holding the exit
  * heading by odometry while it is truly turned `psi` off the wall beside
  * it (right, 250 mm; its parts reading 30 mm long and short: the windows'
  * direction does not depend on them). Within EXIT_MIN_DEG (8) nothing
@@ -342,7 +344,7 @@ static float beside_after(float psi, int wall)
         r.st.odo.dist_mm = s;
         ffr_exit_wall_watch(&r.st);
     }
-    (void)ffr_square_on_wall_beside(&r.st);
+    ffr_square_out_of_room(&r.st);
     CHECK(r.st.route.exit_wall_rad == FFR_EXIT_WALL_NONE); /* taken once */
     return r.st.odo.heading_rad - ref0;
 }
@@ -363,6 +365,60 @@ TEST(out_of_a_room_the_heading_is_set_square_to_the_wall_beside_when_far_off)
             CHECK_NEAR(got, 0.0f, 1e-6f);
         }
         CHECK_NEAR(beside_after(psi, 0), 0.0f, 1e-6f);
+    }
+}
+
+/* Both walls out of a room (route.c, ffr_square_out_of_room): the wall
+ * ahead read `psi_a` off its normal (250 mm ahead; none with drop_c) and
+ * the watch's wall beside `psi_b` off the held heading (the test above
+ * shows the watch reads it), odometry holding the exit heading. */
+static float square_both(float psi_a, float psi_b, int drop_c)
+{
+    rig_t r;
+    ffr_config_t cfg;
+    float ref0 = -0.5f * FFR_PI;
+    ffr_config_default(&cfg);
+    rig_init(&r, &cfg);
+    r.st.odo.heading_rad = ref0;
+    r.st.route.heading_ref_rad = ref0;
+    rig_no_walls(&cfg, r.st.ir_mm);
+    r.st.ir_mm[FFR_IR_LF] = reading(&cfg, FFR_IR_LF, ffr_cosf(psi_a), -ffr_sinf(psi_a), 250.0f);
+    r.st.ir_mm[FFR_IR_RF] = reading(&cfg, FFR_IR_RF, ffr_cosf(psi_a), -ffr_sinf(psi_a), 250.0f);
+    r.st.ir_mm[FFR_IR_CF] = drop_c ? FFR_IR_NONE(&cfg) : reading(&cfg, FFR_IR_CF, ffr_cosf(psi_a), -ffr_sinf(psi_a), 250.0f);
+    rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
+    /* a body truly turned psi_b left sees the wall beside psi_b to the right of the held heading */
+    r.st.route.exit_wall_rad = -psi_b;
+    ffr_square_out_of_room(&r.st);
+    CHECK(r.st.route.exit_wall_rad == FFR_EXIT_WALL_NONE);
+    return r.st.odo.heading_rad - ref0;
+}
+
+/* A robot left room 2 with odometry 15 degrees short: the wall ahead read
+ * 10.5 (two parts' bias), the wall beside 11.4; neither was taken. Now the
+ * wall beside is, when the wall ahead reads the error the same way within
+ * SQUARE_MIN_DEG; read the other way (or exactly square) it is not; far off
+ * (beyond 13) the wall ahead is taken as before, and unread, the wall beside. */
+TEST(out_of_a_room_the_wall_beside_is_taken_when_the_wall_ahead_agrees)
+{
+    int a, b;
+    for (b = -19; b <= 19; ++b) {
+        float pb = (float)b * FFR_DEG, keep = (b > 0 ? 3.0f : -3.0f) * FFR_DEG;
+        if (b > -9 && b < 9) {
+            continue; /* within EXIT_MIN_DEG: the beside test above */
+        }
+        for (a = -12; a <= 12; ++a) {
+            float pa = (float)a * FFR_DEG, got = square_both(pa, pb, 0);
+            if (a * b > 0) {
+                CHECK_NEAR(got, pb - keep, 0.2f * FFR_DEG);
+            } else {
+                CHECK_NEAR(got, 0.0f, 1e-6f);
+            }
+        }
+        /* the wall ahead far off: its angle, less 4 degrees, whatever the wall beside says */
+        CHECK_NEAR(square_both(16.0f * FFR_DEG, pb, 0), 12.0f * FFR_DEG, 0.2f * FFR_DEG);
+        CHECK_NEAR(square_both(-16.0f * FFR_DEG, pb, 0), -12.0f * FFR_DEG, 0.2f * FFR_DEG);
+        /* no wall ahead read: the wall beside */
+        CHECK_NEAR(square_both(-5.0f * FFR_DEG, pb, 1), pb - keep, 0.2f * FFR_DEG);
     }
 }
 
@@ -435,4 +491,5 @@ SUITE(wall_follow,
       TEST_REF(the_last_stretch_past_an_opening_keeps_a_front_corner_off_a_wall),
       TEST_REF(home_follows_the_hallways_middle_and_keeps_it_where_a_side_opens),
       TEST_REF(out_of_a_room_the_heading_is_set_square_to_the_wall_ahead_when_far_off),
-      TEST_REF(out_of_a_room_the_heading_is_set_square_to_the_wall_beside_when_far_off));
+      TEST_REF(out_of_a_room_the_heading_is_set_square_to_the_wall_beside_when_far_off),
+      TEST_REF(out_of_a_room_the_wall_beside_is_taken_when_the_wall_ahead_agrees));
