@@ -235,11 +235,35 @@ TEST(the_last_stretch_past_an_opening_keeps_a_front_corner_off_a_wall)
 }
 
 
+/* Facing a wall `d_mm` ahead, turned `psi` off its normal, odometry on the
+ * held heading; the watch saw the wall beside `exit_wall` (or
+ * FFR_EXIT_WALL_NONE). Squares out of the room; the rig is left for checks. */
+static float square_rig(rig_t *r, float psi, float d_mm, float c_extra_mm, int drop_c, float exit_wall)
+{
+    ffr_config_t cfg;
+    float ref0 = 0.25f * FFR_PI;
+    ffr_config_default(&cfg);
+    rig_init(r, &cfg);
+    r->st.odo.heading_rad = ref0;
+    r->st.route.heading_ref_rad = ref0;
+    rig_no_walls(&cfg, r->st.ir_mm);
+    /* the wall x = d_mm in the wall's frame; in the body frame its normal is (cos psi, -sin psi) */
+    r->st.ir_mm[FFR_IR_LF] = reading(&cfg, FFR_IR_LF, ffr_cosf(psi), -ffr_sinf(psi), d_mm);
+    r->st.ir_mm[FFR_IR_RF] = reading(&cfg, FFR_IR_RF, ffr_cosf(psi), -ffr_sinf(psi), d_mm);
+    r->st.ir_mm[FFR_IR_CF] = drop_c ? FFR_IR_NONE(&cfg)
+                                    : reading(&cfg, FFR_IR_CF, ffr_cosf(psi), -ffr_sinf(psi), d_mm) + c_extra_mm;
+    rig_geom(&r->st.ir_geom, &cfg, r->st.ir_mm);
+    r->st.route.exit_wall_rad = exit_wall;
+    ffr_square_out_of_room(&r->st);
+    return r->st.odo.heading_rad - ref0;
+}
+
 /* Out of a room, facing the corridor's far wall (route.c,
- * ffr_square_out_of_room, no wall seen beside): the robot truly turned `psi` off the wall's
- * normal while odometry holds the exit heading. An angle within
- * SQUARE_MIN_DEG (13) changes nothing (two parts' bias); beyond it, odometry
- * is set to within SQUARE_KEEP_DEG (4) of the wall's angle, either side. A
+ * ffr_square_out_of_room, no wall seen beside): the robot truly turned
+ * `psi` off the wall's normal while odometry holds the exit heading. An
+ * angle within SQUARE_MIN_DEG (13) changes nothing (two parts' bias);
+ * beyond it, odometry is set to within SQUARE_KEEP_DEG (4) of the wall's
+ * angle, either side. A
  * corner ahead (the centre ranger's hit off the corner rangers' line), a
  * wall seen by two rangers only, and three hits in a line with one read
  * beyond SQUARE_RANGE_MM (600: a square robot whose left front ranger looks
@@ -248,22 +272,7 @@ TEST(the_last_stretch_past_an_opening_keeps_a_front_corner_off_a_wall)
 static float square_after(float psi, float d_mm, float c_extra_mm, int drop_c)
 {
     rig_t r;
-    ffr_config_t cfg;
-    float ref0 = 0.25f * FFR_PI;
-    ffr_config_default(&cfg);
-    rig_init(&r, &cfg);
-    r.st.odo.heading_rad = ref0;
-    r.st.route.heading_ref_rad = ref0;
-    rig_no_walls(&cfg, r.st.ir_mm);
-    /* the wall x = d_mm in the wall's frame; in the body frame its normal is (cos psi, -sin psi) */
-    r.st.ir_mm[FFR_IR_LF] = reading(&cfg, FFR_IR_LF, ffr_cosf(psi), -ffr_sinf(psi), d_mm);
-    r.st.ir_mm[FFR_IR_RF] = reading(&cfg, FFR_IR_RF, ffr_cosf(psi), -ffr_sinf(psi), d_mm);
-    r.st.ir_mm[FFR_IR_CF] = drop_c ? FFR_IR_NONE(&cfg)
-                                   : reading(&cfg, FFR_IR_CF, ffr_cosf(psi), -ffr_sinf(psi), d_mm) + c_extra_mm;
-    rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
-    r.st.route.exit_wall_rad = FFR_EXIT_WALL_NONE;
-    ffr_square_out_of_room(&r.st);
-    return r.st.odo.heading_rad - ref0;
+    return square_rig(&r, psi, d_mm, c_extra_mm, drop_c, FFR_EXIT_WALL_NONE);
 }
 
 /* the left front ranger through a door: its hit far out on a line with the others */
@@ -310,8 +319,8 @@ TEST(out_of_a_room_the_heading_is_set_square_to_the_wall_ahead_when_far_off)
 }
 
 /* Out of a room along a wall (route.c, ffr_exit_wall_watch and
- * ffr_square_out_of_room, no wall ahead): the robot drives 400 mm out holding the exit
- * heading by odometry while it is truly turned `psi` off the wall beside
+ * ffr_square_out_of_room, no wall ahead): the robot drives 400 mm out
+ * holding the exit heading by odometry while it is truly turned `psi` off the wall beside
  * it (right, 250 mm; its parts reading 30 mm long and short: the windows'
  * direction does not depend on them). Within EXIT_MIN_DEG (8) nothing
  * changes; beyond it odometry is set to within EXIT_KEEP_DEG (3) of the
@@ -371,26 +380,14 @@ TEST(out_of_a_room_the_heading_is_set_square_to_the_wall_beside_when_far_off)
 /* Both walls out of a room (route.c, ffr_square_out_of_room): the wall
  * ahead read `psi_a` off its normal (250 mm ahead; none with drop_c) and
  * the watch's wall beside `psi_b` off the held heading (the test above
- * shows the watch reads it), odometry holding the exit heading. */
+ * shows the watch reads it): a body truly turned psi_b left sees the wall
+ * beside psi_b to the right of the held heading. */
 static float square_both(float psi_a, float psi_b, int drop_c)
 {
     rig_t r;
-    ffr_config_t cfg;
-    float ref0 = -0.5f * FFR_PI;
-    ffr_config_default(&cfg);
-    rig_init(&r, &cfg);
-    r.st.odo.heading_rad = ref0;
-    r.st.route.heading_ref_rad = ref0;
-    rig_no_walls(&cfg, r.st.ir_mm);
-    r.st.ir_mm[FFR_IR_LF] = reading(&cfg, FFR_IR_LF, ffr_cosf(psi_a), -ffr_sinf(psi_a), 250.0f);
-    r.st.ir_mm[FFR_IR_RF] = reading(&cfg, FFR_IR_RF, ffr_cosf(psi_a), -ffr_sinf(psi_a), 250.0f);
-    r.st.ir_mm[FFR_IR_CF] = drop_c ? FFR_IR_NONE(&cfg) : reading(&cfg, FFR_IR_CF, ffr_cosf(psi_a), -ffr_sinf(psi_a), 250.0f);
-    rig_geom(&r.st.ir_geom, &cfg, r.st.ir_mm);
-    /* a body truly turned psi_b left sees the wall beside psi_b to the right of the held heading */
-    r.st.route.exit_wall_rad = -psi_b;
-    ffr_square_out_of_room(&r.st);
+    float got = square_rig(&r, psi_a, 250.0f, 0.0f, drop_c, -psi_b);
     CHECK(r.st.route.exit_wall_rad == FFR_EXIT_WALL_NONE);
-    return r.st.odo.heading_rad - ref0;
+    return got;
 }
 
 /* A robot left room 2 with odometry 15 degrees short: the wall ahead read
