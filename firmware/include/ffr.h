@@ -407,7 +407,9 @@ typedef struct {
     float bin_y_mm[FFR_ORIENT_BINS];
     float probe_mm[FFR_IR_COUNT];  /* the probed rangers' readings when the last escape began (a fold move: every
                                       ranger's, lead_grew watches the front ones); a ranger looking back
-                                      and not probed: its shortest reading on this move backward (rear_passed) */
+                                      and not probed: its shortest reading on this move backward (rear_passed); in
+                                      the sweep, how far the line of each ranger's last stretch of hits passes
+                                      from the axle (0: none; ffr_orient_record, sweep_side_at_bottom) */
 } ffr_home_orient_t;
 
 /* The explorer (explore.c, the arbitrary start mode): one wall followed

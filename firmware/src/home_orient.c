@@ -267,6 +267,7 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
         int b;
         if (!ffr_ir_valid(cfg, ir_mm[i])) {
             o->anchors = (uint8_t)(o->anchors & ~(1 << i));
+            o->probe_mm[i] = 0.0f;
             continue;
         }
         /* the hit in odometry's frame, relative to the sweep's centre */
@@ -282,6 +283,7 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
         }
         if (ir_mm[i] > SEG_RANGE_MM) {
             o->anchors = (uint8_t)(o->anchors & ~(1 << i));
+            o->probe_mm[i] = 0.0f;
             continue;
         }
         if (!((o->anchors >> i) & 1)) {
@@ -307,6 +309,9 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
                 float qx = odo->x_mm - o->x0_mm - o->anchor_x_mm[i];
                 float qy = odo->y_mm - o->y0_mm - o->anchor_y_mm[i];
                 float t = qx * u + qy * v; /* along the stretch from its start */
+                /* how far its line passes from the axle, kept for this
+                 * ranger until its next stretch (sweep_side_at_bottom) */
+                o->probe_mm[i] = ffr_absf(qx * v - qy * u);
                 if (t > -LINE_REACH_MM && t < len + LINE_REACH_MM) {
                     float fx = o->anchor_x_mm[i] + t * u - (odo->x_mm - o->x0_mm);
                     float fy = o->anchor_y_mm[i] + t * v - (odo->y_mm - o->y0_mm);
@@ -318,6 +323,9 @@ void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_
                     }
                 }
             }
+        }
+        if (len > SEG_MAX_MM) {
+            o->probe_mm[i] = 0.0f; /* a jump to another wall: not the last stretch's */
         }
         o->anchor_x_mm[i] = px;
         o->anchor_y_mm[i] = py;
@@ -2170,13 +2178,30 @@ static void sweep_escape(ffr_state_t *st, float d, float nx, float ny)
 /* where the near face is taken to be, off the axle toward that ranger: just
  * inside the front corners' circle (156 mm), so the move away is ~47 mm */
 #define SWEEP_BOTTOM_AT_MM 150.0f
+/* ... but not for a ranger whose hits run along a wall that passes clear
+ * of the turn: the line of its last stretch of hits (ffr_orient_record
+ * keeps how far it passes from the axle, in probe_mm, until the ranger's
+ * next stretch, a jump or a reading out of the stretches' range) beyond the
+ * room a turn needs (turning radius + CLEAR_MARGIN_MM, as the clearance)
+ * plus the wall-line test's LINE_MARGIN_MM. A wall across the beam comes
+ * down to the bottom as the turn brings the beam square to it, and a part
+ * reading short puts a wall 124 mm off at the bottom (realistic robot 5741
+ * from the nominal start: the home hallway's south wall, 230 mm off the
+ * axle, its line read at 200-206 mm; the stop's escapes cost it 40
+ * missions, docs/robustness.md "A ranger at its bottom along a far wall").
+ * A face that runs on toward the body has its line within the circle, as
+ * has any corner the body could meet on it; no stretch yet: the stop, as
+ * before. Lines read at 167-179 mm, just outside the circle, were the
+ * corner of a nearer face the last stretch had not reached (nominal start
+ * 6151, hallway starts 1056 and 2053): with LINE_MARGIN_MM alone, lost. */
 static int sweep_side_at_bottom(const ffr_state_t *st, float sweep)
 {
     /* the turning side's rangers: beams within 60 degrees of that side */
     uint8_t side = beams_toward(&st->ir_geom, 0.0f, sweep > 0.0f ? 1.0f : -1.0f, 0.5f);
     int i;
     for (i = 0; i < FFR_IR_COUNT; ++i) {
-        if ((side >> i) & 1 && st->ir_mm[i] <= st->cfg.ir_min_mm + 0.5f) {
+        if ((side >> i) & 1 && st->ir_mm[i] <= st->cfg.ir_min_mm + 0.5f &&
+            !(st->orient.probe_mm[i] > ffr_orient_turn_radius_mm(&st->cfg) + CLEAR_MARGIN_MM + LINE_MARGIN_MM)) {
             return i;
         }
     }

@@ -32,6 +32,11 @@ void rig_init(rig_t *r, const ffr_config_t *cfg)
     r->in.flame[0] = r->in.flame[1] = 20;
     r->in.line = 0;
     r->in.start = 0;
+    {
+        /* no output yet: a loop may test r->out before its first tick */
+        static const ffr_outputs_t none;
+        r->out = none;
+    }
 }
 
 void rig_tick(rig_t *r)

@@ -1361,9 +1361,8 @@ TEST(a_wall_line_in_the_sweep_brakes_at_once)
 }
 
 /* The sweep turning right (home_wall_side), `done` degrees into it, the
- * rangers reading ir (mm); one orientation tick. The phase after it. */
-static uint8_t sweep_tick_reading(rig_t *r, ffr_config_t *cfg, const float ir[FFR_IR_COUNT], float done_deg,
-                                  uint8_t escapes)
+ * rangers reading ir (mm), before its tick. */
+static void sweep_rig(rig_t *r, ffr_config_t *cfg, const float ir[FFR_IR_COUNT], float done_deg, uint8_t escapes)
 {
     int i;
     ffr_config_default(cfg);
@@ -1380,6 +1379,13 @@ static uint8_t sweep_tick_reading(rig_t *r, ffr_config_t *cfg, const float ir[FF
     ffr_ir_geom_update(&r->st.ir_geom, &r->st.cfg, r->st.ir_mm);
     r->st.speed.v_ref[0] = 290.0f;
     r->st.speed.v_ref[1] = -290.0f;
+}
+
+/* sweep_rig's sweep and one orientation tick. The phase after it. */
+static uint8_t sweep_tick_reading(rig_t *r, ffr_config_t *cfg, const float ir[FFR_IR_COUNT], float done_deg,
+                                  uint8_t escapes)
+{
+    sweep_rig(r, cfg, ir, done_deg, escapes);
     CHECK(ffr_orient_step(&r->st) == 0);
     return r->st.orient.phase;
 }
@@ -1399,6 +1405,7 @@ TEST(a_ranger_on_the_sweeps_side_at_its_bottom_stops_the_sweep)
             ffr_config_t cfg;
             rig_t r;
             float ir[FFR_IR_COUNT];
+            ffr_config_default(&cfg);
             rig_no_walls(&cfg, ir);
             ir[side[k]] = 100.0f; /* ir_min_mm: the span's bottom */
             CHECK(sweep_tick_reading(&r, &cfg, ir, done[j], 0u) == 8u); /* PH_ESCAPE */
@@ -1424,6 +1431,7 @@ TEST(a_ranger_at_its_bottom_off_the_sweeps_side_or_late_does_not_stop_it)
     int i;
     /* the other side's (the turn takes its corners away) and the centre's */
     static const int others[3] = {FFR_IR_LF, FFR_IR_LR, FFR_IR_CF};
+    ffr_config_default(&cfg);
     for (i = 0; i < 3; ++i) {
         rig_no_walls(&cfg, ir);
         ir[others[i]] = 100.0f;
@@ -1437,6 +1445,89 @@ TEST(a_ranger_at_its_bottom_off_the_sweeps_side_or_late_does_not_stop_it)
     /* the escapes spent: the sweep goes ahead regardless */
     CHECK(sweep_tick_reading(&r, &cfg, ir, 40.0f, FFR_ORIENT_ESCAPE_TRIES) == 0u);
     CHECK(r.st.cmd_w_rad_s < 0.0f);
+}
+
+TEST(the_sweep_keeps_how_far_each_rangers_last_stretch_of_wall_passes)
+{
+    /* the body moves along a wall on its right (odometry 0, 50, 100 mm
+     * ahead), the right rear ranger reading it 150 mm off: its hits run
+     * along the line y = -70 - 150 sin 45 (the sensor 70 mm right of the
+     * axle). A stretch of 50 mm is recorded and its line's distance from
+     * the axle kept; a reading out of range, or a jump past a stretch's
+     * length, forgets it */
+    ffr_config_t cfg;
+    ffr_odometry_t odo;
+    ffr_home_orient_t o;
+    ffr_ir_geom_t g;
+    float ir[FFR_IR_COUNT];
+    const float line = 70.0f + 150.0f * 0.70710678f;
+    ffr_config_default(&cfg);
+    ffr_odometry_reset(&odo);
+    ffr_orient_reset(&o, &odo);
+    rig_no_walls(&cfg, ir);
+    ir[FFR_IR_RR] = 150.0f;
+    ffr_orient_record(&o, &cfg, &odo, rig_geom(&g, &cfg, ir), ir);
+    CHECK_NEAR(o.probe_mm[FFR_IR_RR], 0.0f, 1e-6f); /* one hit: no stretch yet */
+    odo.x_mm = 50.0f;
+    ffr_orient_record(&o, &cfg, &odo, rig_geom(&g, &cfg, ir), ir);
+    CHECK_NEAR(o.probe_mm[FFR_IR_RR], line, 0.5f);
+    odo.x_mm = 70.0f; /* within a stretch's start: kept */
+    ffr_orient_record(&o, &cfg, &odo, rig_geom(&g, &cfg, ir), ir);
+    CHECK_NEAR(o.probe_mm[FFR_IR_RR], line, 0.5f);
+    CHECK_NEAR(o.probe_mm[FFR_IR_LR], 0.0f, 1e-6f); /* the others saw nothing */
+    odo.x_mm = 250.0f; /* 200 mm on: a jump */
+    ffr_orient_record(&o, &cfg, &odo, rig_geom(&g, &cfg, ir), ir);
+    CHECK_NEAR(o.probe_mm[FFR_IR_RR], 0.0f, 1e-6f);
+    odo.x_mm = 300.0f;
+    ffr_orient_record(&o, &cfg, &odo, rig_geom(&g, &cfg, ir), ir);
+    CHECK_NEAR(o.probe_mm[FFR_IR_RR], line, 0.5f);
+    ir[FFR_IR_RR] = 400.0f; /* beyond the stretches' range */
+    ffr_orient_record(&o, &cfg, &odo, rig_geom(&g, &cfg, ir), ir);
+    CHECK_NEAR(o.probe_mm[FFR_IR_RR], 0.0f, 1e-6f);
+}
+
+TEST(a_ranger_at_its_bottom_along_a_wall_outside_the_turning_circle_does_not_stop_the_sweep)
+{
+    /* turning right, a right ranger at its span's bottom, the line of its
+     * last stretch of hits passing beyond the room a turn needs (the front
+     * corners' 156 mm + 20) + 10 (a part reading short, a wall across the
+     * beam farther off): the sweep turns on. That line nearer (a face
+     * running on toward the body, or a corner just past the stretch), or
+     * no stretch seen: the stop, as before. Over the turn's extent and both
+     * the turning side's rangers */
+    static const int side[2] = {FFR_IR_RF, FFR_IR_RR};
+    static const float done[3] = {5.0f, 40.0f, 90.0f};
+    static const float far_mm[3] = {187.0f, 206.0f, 400.0f};
+    static const float near_mm[3] = {0.0f, 120.0f, 185.0f};
+    unsigned k, j, n;
+    for (k = 0; k < 2; ++k) {
+        for (j = 0; j < 3; ++j) {
+            for (n = 0; n < 3; ++n) {
+                ffr_config_t cfg;
+                rig_t r;
+                float ir[FFR_IR_COUNT];
+                ffr_config_default(&cfg);
+                rig_no_walls(&cfg, ir);
+                ir[side[k]] = 100.0f; /* ir_min_mm */
+                sweep_rig(&r, &cfg, ir, done[j], 0u);
+                r.st.orient.probe_mm[side[k]] = far_mm[n];
+                CHECK(ffr_orient_step(&r.st) == 0);
+                CHECK(r.st.orient.phase == 0u); /* PH_SWEEP: turning on */
+                CHECK(r.st.cmd_w_rad_s < 0.0f);
+                CHECK(r.st.orient.escapes == 0u);
+                sweep_rig(&r, &cfg, ir, done[j], 0u);
+                r.st.orient.probe_mm[side[k]] = near_mm[n];
+                CHECK(ffr_orient_step(&r.st) == 0);
+                CHECK(r.st.orient.phase == 8u); /* PH_ESCAPE */
+                CHECK(r.st.orient.escapes == 1u);
+                /* the other side ranger's far line is not this one's */
+                sweep_rig(&r, &cfg, ir, done[j], 0u);
+                r.st.orient.probe_mm[side[1u - k]] = far_mm[n];
+                CHECK(ffr_orient_step(&r.st) == 0);
+                CHECK(r.st.orient.phase == 8u);
+            }
+        }
+    }
 }
 
 TEST(the_sweep_turns_away_from_a_wall_beside)
@@ -2800,6 +2891,8 @@ SUITE(home_orient,
       TEST_REF(a_wall_line_in_the_sweep_brakes_at_once),
       TEST_REF(a_ranger_on_the_sweeps_side_at_its_bottom_stops_the_sweep),
       TEST_REF(a_ranger_at_its_bottom_off_the_sweeps_side_or_late_does_not_stop_it),
+      TEST_REF(the_sweep_keeps_how_far_each_rangers_last_stretch_of_wall_passes),
+      TEST_REF(a_ranger_at_its_bottom_along_a_wall_outside_the_turning_circle_does_not_stop_the_sweep),
       TEST_REF(the_sweep_turns_away_from_a_wall_beside),
       TEST_REF(the_sweep_turns_away_from_a_front_corner_read_folded_back),
       TEST_REF(the_sweep_turns_toward_a_front_corner_read_folded_back_with_the_centre),
