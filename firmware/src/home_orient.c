@@ -68,6 +68,11 @@
 #define BAND_MARGIN_MM 30.0f /* the body's path: its half width plus this each side      */
 #define SHIFT_TOL_MM 40.0f   /* a shift shorter than this is not made                    */
 #define QUICK_TOL_DEG 2.0f
+/* the shift's turn: and turning slower than this (chosen: 80 % of the
+ * sweep's 200 degrees/s, a body not yet braked from the sweep's spin; 60
+ * and 120 lost realistic robot 37 whole, whose shift's turn braked for 80
+ * ms and was done at 163: docs/robustness.md) */
+#define QUICK_SPIN_DEG_S 160.0f
 /* where to stand goes by walls straight across each axis (a band this wide
  * each side), not by a wall's end off to the side at a junction */
 #define CENTRE_BAND_MM 40.0f
@@ -1929,14 +1934,24 @@ static float nearest(float heading, float dir) { return heading + ffr_wrap_pi(di
 
 /* A turn in place at home: quicker than the route's turns (twice the gain,
  * done within 2 degrees without waiting for the spin to settle: the next
- * motion holds the heading anyway). 1 when there. */
-static int quick_turn(ffr_state_t *st, float target)
+ * motion holds the heading anyway). 1 when there. With `settle` (the
+ * shift's turn) not while the body still spins faster than
+ * QUICK_SPIN_DEG_S: the sweep ends at its full rate, and a shift whose
+ * direction lay within 2 degrees of that heading was "there" at once; the
+ * body spun on ~30 degrees as the shift began backing, drove off its line
+ * toward a wall beside, was cut short there, and the aim from the
+ * junction's mouth chose the wrong way (jittered start seeds 5884, 6825).
+ * Not for the aim's turn: the route's first leg goes forward, its heading
+ * held, and settling there too lost realistic robot 5610 whole
+ * (docs/robustness.md, "The shift's turn done while still spinning"). */
+static int quick_turn(ffr_state_t *st, float target, int settle)
 {
     const ffr_config_t *cfg = &st->cfg;
     float err = target - st->odo.heading_rad;
     float lim = cfg->turn_rate_deg_s * FFR_DEG;
     float w = ffr_clampf(2.0f * cfg->heading_kp * err, -lim, lim);
-    if (ffr_absf(err) < QUICK_TOL_DEG * FFR_DEG) {
+    float spin = ffr_absf(st->odo.v_mm_s[1] - st->odo.v_mm_s[0]) / cfg->track_width_mm;
+    if (ffr_absf(err) < QUICK_TOL_DEG * FFR_DEG && (!settle || spin < QUICK_SPIN_DEG_S * FFR_DEG)) {
         return 1;
     }
     if (ffr_absf(w) < 30.0f * FFR_DEG) {
@@ -2351,7 +2366,7 @@ int ffr_orient_step(ffr_state_t *st)
         return 0;
     }
     if (o->phase == PH_SHIFT_TURN) {
-        if (!quick_turn(st, o->target_rad)) {
+        if (!quick_turn(st, o->target_rad, 1)) {
             return 0;
         }
         ffr_stop(st);
@@ -2381,7 +2396,7 @@ int ffr_orient_step(ffr_state_t *st)
         aim(st);
     }
     if (o->phase == PH_TURN) {
-        if (!quick_turn(st, o->target_rad)) {
+        if (!quick_turn(st, o->target_rad, 0)) {
             return 0;
         }
         ffr_stop(st);

@@ -560,6 +560,53 @@ TEST(the_aim_turns_on_its_own_tick)
     CHECK(ffr_cosf(st.orient.target_rad) > 0.99f);
 }
 
+#define ORIENT_PH_SHIFT_TURN 2u  /* home_orient.c's PH_SHIFT_TURN */
+#define ORIENT_PH_SHIFT_DRIVE 3u /* home_orient.c's PH_SHIFT_DRIVE */
+#define ORIENT_PH_DONE 6u        /* home_orient.c's PH_DONE */
+
+/* odometry's wheel speeds of a body spinning at w (rad/s, + to the left) */
+static void spin_at(ffr_state_t *st, float w)
+{
+    st->odo.v_mm_s[0] = -0.5f * w * st->cfg.track_width_mm;
+    st->odo.v_mm_s[1] = 0.5f * w * st->cfg.track_width_mm;
+}
+
+TEST(the_shifts_turn_is_not_done_while_the_body_still_spins)
+{
+    /* the sweep ends at its full rate (200 degrees/s); a shift's direction
+     * within 2 degrees of the heading there was reached at once, and the
+     * body spun on ~30 degrees as the shift began backing (jittered start
+     * seed 5884). Within the 2 degrees the shift's turn ends only below 160
+     * degrees/s, turning toward its target until then; the aim's turn ends
+     * within them at any rate, as before */
+    static const float spins[6] = {-200.0f, 200.0f, -170.0f, 165.0f, -150.0f, 150.0f}; /* degrees/s */
+    ffr_config_t cfg;
+    rig_t r;
+    int k, j;
+    ffr_config_default(&cfg);
+    for (k = 0; k < 2; ++k) {
+        for (j = 0; j < 6; ++j) {
+            rig_init(&r, &cfg);
+            rig_tick(&r); /* the readings in: no walls */
+            ffr_orient_begin(&r.st);
+            r.st.orient.phase = k == 0 ? ORIENT_PH_SHIFT_TURN : ORIENT_PH_TURN;
+            r.st.orient.reverse = 0u;
+            r.st.orient.target_rad = r.st.odo.heading_rad + 1.5f * FFR_DEG;
+            r.st.orient.goal_mm = 100.0f;
+            spin_at(&r.st, spins[j] * FFR_DEG);
+            ffr_orient_step(&r.st);
+            if (k == 1) {
+                CHECK(r.st.orient.phase == ORIENT_PH_DONE);
+            } else if (j < 4) {
+                CHECK(r.st.orient.phase == ORIENT_PH_SHIFT_TURN);
+                CHECK(r.st.cmd_w_rad_s > 0.0f); /* toward the target, left */
+            } else {
+                CHECK(r.st.orient.phase == ORIENT_PH_SHIFT_DRIVE); /* braked below 160: there */
+            }
+        }
+    }
+}
+
 TEST(the_firmware_orients_before_the_route)
 {
     ffr_config_t cfg;
@@ -2875,7 +2922,7 @@ SUITE(home_orient,
       TEST_REF(a_junction_read_short_keeps_the_way_with_its_wall),
       TEST_REF(a_narrow_hallway_off_its_middle_is_a_way),
       TEST_REF(the_aim_decides_as_aimints_one_tick_aim),
-      TEST_REF(the_aim_turns_on_its_own_tick),
+      TEST_REF(the_aim_turns_on_its_own_tick), TEST_REF(the_shifts_turn_is_not_done_while_the_body_still_spins),
       TEST_REF(the_firmware_orients_before_the_route),
       TEST_REF(the_nearest_wall_from_the_five_rangers),
       TEST_REF(room_to_turn_first_then_the_sweep),
