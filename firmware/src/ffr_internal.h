@@ -156,6 +156,8 @@ int ffr_scan_sq_fix(const ffr_scan_square_t *q, ffr_odometry_t *o, float *grow);
 
 /* turn.c: turning in place by odometry. */
 float ffr_turn_yaw(const ffr_config_t *cfg, float heading, float target);
+/* how fast the body turns (rad/s, unsigned) by odometry's wheel speeds */
+float ffr_turn_spin(const ffr_config_t *cfg, const ffr_odometry_t *o);
 int ffr_turn_done(const ffr_config_t *cfg, const ffr_odometry_t *o, float target);
 /* chosen: the contest hallway leaves 230 mm from its middle to a wall, the
  * default body's corner radius is 156 mm; 60 mm keeps the nominal route's

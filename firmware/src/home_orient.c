@@ -1950,8 +1950,7 @@ static int quick_turn(ffr_state_t *st, float target, int settle)
     float err = target - st->odo.heading_rad;
     float lim = cfg->turn_rate_deg_s * FFR_DEG;
     float w = ffr_clampf(2.0f * cfg->heading_kp * err, -lim, lim);
-    float spin = ffr_absf(st->odo.v_mm_s[1] - st->odo.v_mm_s[0]) / cfg->track_width_mm;
-    if (ffr_absf(err) < QUICK_TOL_DEG * FFR_DEG && (!settle || spin < QUICK_SPIN_DEG_S * FFR_DEG)) {
+    if (ffr_absf(err) < QUICK_TOL_DEG * FFR_DEG && (!settle || ffr_turn_spin(cfg, &st->odo) < QUICK_SPIN_DEG_S * FFR_DEG)) {
         return 1;
     }
     if (ffr_absf(w) < 30.0f * FFR_DEG) {

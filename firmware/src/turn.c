@@ -14,11 +14,15 @@ float ffr_turn_yaw(const ffr_config_t *cfg, float heading, float target)
     return w;
 }
 
+float ffr_turn_spin(const ffr_config_t *cfg, const ffr_odometry_t *o)
+{
+    return ffr_absf(o->v_mm_s[1] - o->v_mm_s[0]) / cfg->track_width_mm;
+}
+
 int ffr_turn_done(const ffr_config_t *cfg, const ffr_odometry_t *o, float target)
 {
     float err = ffr_absf(target - o->heading_rad);
-    float spin = ffr_absf(o->v_mm_s[1] - o->v_mm_s[0]) / cfg->track_width_mm;
-    return err < cfg->turn_tol_deg * FFR_DEG && spin < 20.0f * FFR_DEG;
+    return err < cfg->turn_tol_deg * FFR_DEG && ffr_turn_spin(cfg, o) < 20.0f * FFR_DEG;
 }
 
 /*

@@ -1533,6 +1533,17 @@ TEST(the_sweep_keeps_how_far_each_rangers_last_stretch_of_wall_passes)
     CHECK_NEAR(o.probe_mm[FFR_IR_RR], 0.0f, 1e-6f);
 }
 
+/* sweep_rig's sweep with ranger `line`'s last stretch of hits passing
+ * line_mm from the axle, and one orientation tick. The phase after it. */
+static uint8_t sweep_tick_line(rig_t *r, ffr_config_t *cfg, const float ir[FFR_IR_COUNT], float done_deg, int line,
+                               float line_mm)
+{
+    sweep_rig(r, cfg, ir, done_deg, 0u);
+    r->st.orient.probe_mm[line] = line_mm;
+    CHECK(ffr_orient_step(&r->st) == 0);
+    return r->st.orient.phase;
+}
+
 TEST(a_ranger_at_its_bottom_along_a_wall_outside_the_turning_circle_does_not_stop_the_sweep)
 {
     /* turning right, a right ranger at its span's bottom, the line of its
@@ -1556,22 +1567,13 @@ TEST(a_ranger_at_its_bottom_along_a_wall_outside_the_turning_circle_does_not_sto
                 ffr_config_default(&cfg);
                 rig_no_walls(&cfg, ir);
                 ir[side[k]] = 100.0f; /* ir_min_mm */
-                sweep_rig(&r, &cfg, ir, done[j], 0u);
-                r.st.orient.probe_mm[side[k]] = far_mm[n];
-                CHECK(ffr_orient_step(&r.st) == 0);
-                CHECK(r.st.orient.phase == 0u); /* PH_SWEEP: turning on */
+                CHECK(sweep_tick_line(&r, &cfg, ir, done[j], side[k], far_mm[n]) == 0u); /* PH_SWEEP: turning on */
                 CHECK(r.st.cmd_w_rad_s < 0.0f);
                 CHECK(r.st.orient.escapes == 0u);
-                sweep_rig(&r, &cfg, ir, done[j], 0u);
-                r.st.orient.probe_mm[side[k]] = near_mm[n];
-                CHECK(ffr_orient_step(&r.st) == 0);
-                CHECK(r.st.orient.phase == 8u); /* PH_ESCAPE */
+                CHECK(sweep_tick_line(&r, &cfg, ir, done[j], side[k], near_mm[n]) == 8u); /* PH_ESCAPE */
                 CHECK(r.st.orient.escapes == 1u);
                 /* the other side ranger's far line is not this one's */
-                sweep_rig(&r, &cfg, ir, done[j], 0u);
-                r.st.orient.probe_mm[side[1u - k]] = far_mm[n];
-                CHECK(ffr_orient_step(&r.st) == 0);
-                CHECK(r.st.orient.phase == 8u);
+                CHECK(sweep_tick_line(&r, &cfg, ir, done[j], side[1u - k], far_mm[n]) == 8u);
             }
         }
     }
