@@ -128,6 +128,11 @@
 #define ESCAPE_START_MM 0.0f      /* the front shut: less room than this beyond ESCAPE_FREE_MM (chosen) */
 #define ESCAPE_TRIES FFR_ORIENT_ESCAPE_TRIES /* moves before the sweep goes ahead regardless */
 #define BESIDE_REAR_MM 30.0f      /* a rear ranger this far above its span's bottom: the wall beside */
+/* the wide S: the front ranger this far above its span's bottom too (a wall
+ * 8 mm off the side folds back to read ~4 mm above it; chosen: 20, 30, 40
+ * and 80 all won the same start seeds on the rows of docs/robustness.md,
+ * "The wide S from a front ranger just above its bottom"; 40 lost fewest) */
+#define WIDE_FRONT_MM 40.0f
 #define LEG_PROBE_RETURN 4u       /* the probe's way back to where it stood (nothing folded back) */
 #define LEG_ALONG_RETURN 10u      /* the same for unfold_front's probe, retracing its way */
 #define LEG_ALONG 11u             /* unfold_front's moves back (its probe, the move after): the wall beside along them */
@@ -1103,13 +1108,17 @@ static void start_escape(ffr_state_t *st, float need, float d, float nx, float n
         shut = front < st->cfg.body_front_mm + ESCAPE_FREE_MM + ESCAPE_START_MM;
         /* after the straight back below: forward, if that gave the front room */
         o->reverse = end_room(st, 1, ARC_BAND_MM, 0u) > front && (shut || !was_back);
-        if (!o->reverse && skip != 0u) {
+        if (!o->reverse && beside_skip_within(st, ny, WIDE_FRONT_MM) != 0u) {
             /* forward from a wall beside nearer than the rangers measure
-             * (both at their span's bottom, or the rear one just above
-             * it): the first arc swings the rear corner out toward it,
-             * ~19 mm on the 150 mm arc, ~12 mm on ESCAPE_WIDE_MM's. The
-             * wider S where the floor ahead has room for it (fresh +-2.5 cm
-             * start seed 605: 14 mm off the wall) */
+             * (both at their span's bottom, or just above it: a wall 8 mm
+             * off the side, parallel, folds both back to ~104 mm; the front
+             * one within WIDE_FRONT_MM of the bottom, the rear one within
+             * BESIDE_REAR_MM): the first arc swings the rear corner out
+             * toward it, ~19 mm on the 150 mm arc, ~12 mm on
+             * ESCAPE_WIDE_MM's. The wider S where the floor ahead has room
+             * for it (fresh +-2.5 cm start seed 605: 14 mm off the wall;
+             * nominal start seed 7636: 8 mm off, the front ranger at 104 mm,
+             * the 150 mm arc met it) */
             float aw = s_angle(lat, ESCAPE_WIDE_MM);
             if (front > s_room(&st->cfg, ESCAPE_WIDE_MM, aw)) {
                 a = aw;

@@ -1813,6 +1813,70 @@ TEST(a_wall_beside_this_near_gets_the_wider_s_where_the_floor_allows)
     }
 }
 
+/* The whole firmware orienting from heading 0 beside the walls w, read
+ * folded back, the left corner ranger reading at least lf_min: the first S
+ * forward's leg and curvature (leg -1: none began) */
+static void first_s_forward(const rig_walls_t *w, float lf_min, int *leg, float *rad)
+{
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT];
+    rig_t r;
+    int i;
+    ffr_config_default(&cfg);
+    rig_init(&r, &cfg);
+    r.st.cfg.home_wall_side = FFR_HOME_WALL_ANY;
+    r.in.start = 1;
+    *leg = -1;
+    *rad = 0.0f;
+    for (i = 0; i < 1500 && *leg < 0; ++i) {
+        readings_folded(&cfg, w, r.st.odo.x_mm, r.st.odo.y_mm, r.st.odo.heading_rad, ir);
+        ir[FFR_IR_LF] = ir[FFR_IR_LF] < lf_min ? lf_min : ir[FFR_IR_LF];
+        feed(&r, &cfg, ir);
+        rig_tick(&r);
+        if (r.out.state != FFR_ST_ORIENT && i > 2) {
+            break;
+        }
+        if (r.st.orient.phase == 8u && s_first_arc(&r.st.orient) && !r.st.orient.reverse) { /* PH_ESCAPE */
+            *leg = r.st.orient.leg;
+            *rad = r.st.orient.target_rad;
+        }
+    }
+}
+
+TEST(a_front_ranger_just_above_its_bottom_still_gets_the_wider_s)
+{
+    /* A wall along the left side 5 mm off and parallel: both rangers on that
+     * side fold back to read a few mm above their span's bottom (the rig's
+     * curve, as the nominal part's: a wall 8 mm off read 104 and 102 mm in
+     * the simulation). Not a wall's end at the front corner: the wall
+     * beside. After the fold move forward the S forward is the wide one
+     * begun gently (LEG_SOFT, 300 mm), whose rear corner swings out ~7 mm,
+     * not the 150 mm arc's ~19 (nominal start seed 7636: 8 mm off the
+     * south wall, the front ranger at 104 mm; taken as the wall beside only
+     * at its very bottom, the 150 mm arc met the wall at 0.73 s, and the
+     * wide S gets it home). A part reading 20 mm long there: the wide S as
+     * well; 41 mm above the bottom, beyond WIDE_FRONT_MM (40 mm): the 150 mm
+     * arc, as before. (In this rig a wall nearer than 11 mm is still met
+     * after the soft arc, old rule or new: docs/robustness.md) */
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT], rad;
+    int leg;
+    rig_walls_t w = {105.0f, -2000.0f, 0.0f, 0.0f, 0.0f, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f}};
+    ffr_config_default(&cfg);
+    readings_folded(&cfg, &w, 0.0f, 0.0f, 0.0f, ir);
+    CHECK(ir[FFR_IR_LF] > cfg.ir_min_mm + 0.5f && ir[FFR_IR_LF] < cfg.ir_min_mm + 40.0f);
+    CHECK(ir[FFR_IR_LR] > cfg.ir_min_mm + 0.5f && ir[FFR_IR_LR] < cfg.ir_min_mm + 30.0f);
+    first_s_forward(&w, 0.0f, &leg, &rad);
+    CHECK(leg == 9); /* LEG_SOFT */
+    CHECK_NEAR(rad, -1.0f / 300.0f, 1e-6f);
+    first_s_forward(&w, cfg.ir_min_mm + 20.0f, &leg, &rad); /* a part reading 20 mm long */
+    CHECK(leg == 9);
+    CHECK_NEAR(rad, -1.0f / 300.0f, 1e-6f);
+    first_s_forward(&w, cfg.ir_min_mm + 41.0f, &leg, &rad); /* beyond: the 150 mm arc */
+    CHECK(leg == 1);
+    CHECK_NEAR(rad, -1.0f / 150.0f, 1e-6f);
+}
+
 TEST(room_to_turn_again_after_the_shift)
 {
     /* the shift drove backward toward a wall across its axis, read long in
@@ -2947,6 +3011,7 @@ SUITE(home_orient,
       TEST_REF(the_sweep_turns_toward_a_front_corner_read_folded_back_with_the_centre),
       TEST_REF(a_wall_beside_below_the_span_is_no_end_of_the_s),
       TEST_REF(a_wall_beside_this_near_gets_the_wider_s_where_the_floor_allows),
+      TEST_REF(a_front_ranger_just_above_its_bottom_still_gets_the_wider_s),
       TEST_REF(room_to_turn_again_after_the_shift),
       TEST_REF(a_straight_escape_stops_short_of_a_wall_across_at_a_slant),
       TEST_REF(a_straight_escape_is_not_refused_by_a_line_across_a_corner),
