@@ -129,9 +129,9 @@
 #define ESCAPE_TRIES FFR_ORIENT_ESCAPE_TRIES /* moves before the sweep goes ahead regardless */
 #define BESIDE_REAR_MM 30.0f      /* a rear ranger this far above its span's bottom: the wall beside */
 /* the wide S: the front ranger this far above its span's bottom too (a wall
- * 8 mm off the side folds back to read ~4 mm above it; chosen: 20, 30, 40
- * and 80 all won the same start seeds on the rows of docs/robustness.md,
- * "The wide S from a front ranger just above its bottom"; 40 lost fewest) */
+ * 8 mm off the side folds back to read ~4 mm above it; chosen: 20, 30 and 40
+ * all won start seeds 7636 and 1001 on the rows of docs/robustness.md, "The
+ * wide S from a front ranger just above its bottom"; 40 won the most) */
 #define WIDE_FRONT_MM 40.0f
 #define LEG_PROBE_RETURN 4u       /* the probe's way back to where it stood (nothing folded back) */
 #define LEG_ALONG_RETURN 10u      /* the same for unfold_front's probe, retracing its way */
