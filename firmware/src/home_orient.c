@@ -1358,6 +1358,37 @@ static int fold_move_if_room(ffr_state_t *st, uint8_t away, float len, uint8_t b
     return 1;
 }
 
+/* A rear suspect's own side's front corner ranger a suspect too, reading
+ * within NEARER_FRONT_MM above its span's bottom and NEARER_BY_MM or more
+ * below the rear one: the wall beside is nearer at the front corner as
+ * read, and may be nearer still (folded back: ~5 cm off the ranger, the
+ * corner a few mm off the wall). The rear fold move forward would drive
+ * that corner into it (nominal start seeds 6383, 6709, 6803, 6823: 3-8 mm
+ * off the home hallway's south wall, 11-37 degrees toward it). Not when the
+ * other rear ranger reads a wall within BEHIND_MM: a wall behind, which the
+ * move back would meet (arbitrary start seed 2051: a hallway's end wall).
+ * A front ranger at its very bottom is left to the rules as before (the
+ * wall beside: the S forward). Those front rangers, else 0
+ * (docs/robustness.md, "Back first from a wall beside nearer at the front") */
+#define NEARER_FRONT_MM 15.0f /* chosen: the won starts read 1-11 mm above the bottom */
+#define NEARER_BY_MM 20.0f    /* chosen: they read 28-56 mm below the rear one */
+#define BEHIND_MM 250.0f      /* chosen: the hallway start lost read 229; the won 296 and more */
+static uint8_t front_nearer(const ffr_state_t *st, uint8_t suspects)
+{
+    static const uint8_t pair[2][3] = {{FFR_IR_LR, FFR_IR_LF, FFR_IR_RR}, {FFR_IR_RR, FFR_IR_RF, FFR_IR_LR}};
+    uint8_t m = 0u;
+    int k;
+    for (k = 0; k < 2; ++k) {
+        float r = st->ir_mm[pair[k][0]], f = st->ir_mm[pair[k][1]];
+        if ((suspects >> pair[k][0]) & 1 && (suspects >> pair[k][1]) & 1 && f <= st->cfg.ir_min_mm + NEARER_FRONT_MM &&
+            f < r - NEARER_BY_MM &&
+            st->ir_mm[pair[k][2]] > BEHIND_MM) {
+            m = (uint8_t)(m | (1 << pair[k][1]));
+        }
+    }
+    return m;
+}
+
 /* A rear ranger reading within the fold-back span (above its bottom, up to
  * FFR_FOLD_MAX_MM) may be a wall 3-5.5 cm off it, read as 10-18.5 cm: a
  * rear corner on a wall, which no rule from the hits sees (the hit is
@@ -1368,11 +1399,21 @@ static int fold_move_if_room(ffr_state_t *st, uint8_t away, float len, uint8_t b
  * away from a wall behind or diagonally behind. `suspects`: the readings
  * within the fold-back span on the first look (ffr_orient_step gives 0
  * after any move, and with the fold-back probe built in, which does this
- * job there). 1 when the move starts. */
+ * job there). But the front fold move, back, where the wall beside is
+ * nearer at the front corner (front_nearer). 1 when the move starts. */
 static int rear_fold_move(ffr_state_t *st, uint8_t suspects)
 {
-    /* suspects 0, the common case: the beams not looked up (the first look's tick, make selftest) */
-    return suspects != 0u && fold_move_if_room(st, (uint8_t)(suspects & rear_beams(st)), REAR_FOLD_MOVE_MM, 0u);
+    uint8_t front;
+    if (suspects == 0u) {
+        return 0; /* the common case: the beams not looked up (the first look's tick, make selftest) */
+    }
+    front = front_nearer(st, suspects);
+    if (front != 0u) {
+        /* the wall beside may slant in toward the front corner: the front
+         * fold move instead (straight back), as front_fold_move's */
+        return fold_move_if_room(st, (uint8_t)(suspects & front_beams(st)), FRONT_FOLD_MOVE_MM, 1u);
+    }
+    return fold_move_if_room(st, (uint8_t)(suspects & rear_beams(st)), REAR_FOLD_MOVE_MM, 0u);
 }
 
 /* The same for the front: the centre ranger or a front corner ranger

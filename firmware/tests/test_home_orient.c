@@ -1877,6 +1877,57 @@ TEST(a_front_ranger_just_above_its_bottom_still_gets_the_wider_s)
     CHECK_NEAR(rad, -1.0f / 150.0f, 1e-6f);
 }
 
+TEST(back_first_from_a_wall_beside_nearer_at_the_front)
+{
+    /* Nominal start seed 6803's first look: 3.5 mm off the south wall on
+     * its right, 12 degrees toward it. The right rear ranger reads 139 mm
+     * (within the fold-back span), the right front one 111 mm, near its
+     * bottom: that wall is nearer at the front corner (folded back there,
+     * ~5 cm off the ranger). The rear fold move forward met it at 0.2 s;
+     * the front fold move, straight back, first. With the other rear
+     * ranger reading a wall 229 mm off (a wall behind: arbitrary start seed
+     * 2051), a front ranger 16 mm above its bottom, one not 20 mm below
+     * the rear one, or one at its very bottom (not a suspect: the wall
+     * beside, a_wall_beside_below_the_span_is_no_end_of_the_s): the rear
+     * fold move forward, as before */
+    static const float seen[FFR_IR_COUNT] = {190.0f, 229.0f, 111.0f, 300.0f, 139.0f}; /* CF LF RF LR RR */
+    ffr_config_t cfg;
+    float ir[FFR_IR_COUNT];
+    rig_t r;
+    int i, k;
+    ffr_config_default(&cfg);
+    if (FFR_HOME_FOLD_MM > 0.0f) {
+        CHECK(FFR_HOME_FOLD_MM > 0.0f); /* the fold moves are off with the probe on */
+        return;
+    }
+    for (k = 0; k < 5; ++k) {
+        for (i = 0; i < FFR_IR_COUNT; ++i) {
+            ir[i] = seen[i];
+        }
+        if (k == 4) {
+            ir[FFR_IR_RF] = cfg.ir_min_mm;
+        }
+        if (k == 1) {
+            ir[FFR_IR_LR] = 229.0f;
+        } else if (k == 2) {
+            ir[FFR_IR_RF] = cfg.ir_min_mm + 16.0f;
+        } else if (k == 3) {
+            ir[FFR_IR_RF] = 110.0f;
+            ir[FFR_IR_RR] = 129.0f;
+        }
+        first_move(&r, &cfg, ir);
+        if (k == 4) {
+            /* no fold move forward either (the front shut at the bottom's
+             * hit): not the front fold move back, at least */
+            CHECK(!(r.st.orient.phase == 8u && r.st.orient.leg == 6u && r.st.orient.reverse == 1u));
+            continue;
+        }
+        CHECK(r.st.orient.phase == 8u && r.st.orient.leg == 6u); /* PH_ESCAPE, LEG_FOLD */
+        CHECK(r.st.orient.target_rad == 0.0f);
+        CHECK(r.st.orient.reverse == (k == 0 ? 1u : 0u));
+    }
+}
+
 TEST(room_to_turn_again_after_the_shift)
 {
     /* the shift drove backward toward a wall across its axis, read long in
@@ -3012,6 +3063,7 @@ SUITE(home_orient,
       TEST_REF(a_wall_beside_below_the_span_is_no_end_of_the_s),
       TEST_REF(a_wall_beside_this_near_gets_the_wider_s_where_the_floor_allows),
       TEST_REF(a_front_ranger_just_above_its_bottom_still_gets_the_wider_s),
+      TEST_REF(back_first_from_a_wall_beside_nearer_at_the_front),
       TEST_REF(room_to_turn_again_after_the_shift),
       TEST_REF(a_straight_escape_stops_short_of_a_wall_across_at_a_slant),
       TEST_REF(a_straight_escape_is_not_refused_by_a_line_across_a_corner),

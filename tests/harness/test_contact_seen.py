@@ -29,7 +29,7 @@ def test_the_point_touched_and_the_corner_that_touched_it() -> None:
 
 
 def test_a_corner_on_a_wall_its_ranger_read_folded_back() -> None:
-    c = contact_seen.contact_of(TOUCH, 1045, "1", 0.03)
+    c = contact_seen.contact_of(TOUCH, 7973, "1", 0.03)
     assert c is not None and c.seen is not None and c.first is not None
     assert c.part == "FL" and c.seen.ranger == "LF"
     assert c.seen.true_mm < contact_seen.FOLD_PEAK_MM  # the fold-back side of the GP2D12's peak
@@ -39,19 +39,19 @@ def test_a_corner_on_a_wall_its_ranger_read_folded_back() -> None:
 
 def test_the_command_prints_counts_lines_and_the_span(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     ok = "ffr run --candle 1.83,1.53 --seed 3 --start random"
-    src = _csv(tmp_path / "s.csv", [(1045, False, TOUCH), (3, True, ok)])
+    src = _csv(tmp_path / "s.csv", [(7973, False, TOUCH), (3, True, ok)])
     rows = tmp_path / "rows.tsv"
     assert contact_seen.main([str(src), "--rows", str(rows), "--span", "1"]) == 0
     out = capsys.readouterr().out.splitlines()
     assert out[0].startswith("1 failed missions, 1 touched a wall; 1 of the points touched were seen")
     assert "1 by the touching corner's own ranger; 1 last at a true range below 80 mm" in out[0]
-    assert out[2].split()[:5] == ["1045", "1", out[2].split()[2], "FL", "LF"]
+    assert out[2].split()[:5] == ["7973", "1", out[2].split()[2], "FL", "LF"]
     assert out[3].startswith("readings within the fold-back span (160 mm) over the orientation of 1 rows")
     lf = next(line.split() for line in out[4:] if line.split()[0] == "LF")
-    assert int(lf[1]) > 0  # seed 1045's left front ranger: a wall within 80 mm, read within the span
+    assert int(lf[1]) > 0  # seed 7973's left front ranger: a wall within 80 mm, read within the span
     lines = rows.read_text().splitlines()
     assert lines[0].split("\t")[:5] == ["seed", "room", "contact_s", "part", "last_ranger"]
-    assert lines[1].split("\t")[0] == "1045" and len(lines) == 2
+    assert lines[1].split("\t")[0] == "7973" and len(lines) == 2
 
 
 def test_at_start_counts_the_first_tick_only(tmp_path: Path) -> None:
