@@ -47,6 +47,21 @@
 /* the front ranger's hit jumping out this far to the side of the wall it was
  * following is past that wall's end (through a door, across a junction), even
  * when it still counts as beside; slow drift is followed at this share per tick */
+/* From a hallway start (the explorer's legs), the front corner ranger's
+ * first hit of a step this much farther to the side than the wall the rear
+ * ranger passes along (its first hit's) is seen through an opening in that
+ * wall, not the wall: a door's far side, a room's wall beyond it (+-2.5 cm
+ * hallway start seed 2415: a probe begun past the wall's end for the front
+ * ranger, its first hit 385 mm to the side against ~220, through the
+ * bottom-right room's door; taken for the wall, it put the wall's end 30 cm
+ * past the door's near jamb, and the probe met the far one). No wall for the
+ * front ranger then, and the rear ranger's end marks the opening. Only the
+ * first: after it the front ranger's own wall is the measure (FRONT_JUMP_MM).
+ * Chosen: 120 mm, above the 60 mm two parts' spread puts between their
+ * readings of one wall; any later hit so far out (a wall stepping out) lost
+ * whole nominal hallway starts (docs/robustness.md, "A front hit through an
+ * opening is no wall's end"). The route's legs keep the plain rule. */
+#define THROUGH_MM 120.0f
 #define FRONT_JUMP_MM 70.0f
 #define FRONT_LAT_FOLLOW 0.2f
 /* ffr_openings_t.front_saw: the front ranger saw no wall this step but has
@@ -159,7 +174,12 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
         int rear = ffr_hit_beside(cfg, g, ir_mm, r, &rx, &ry);
         if (front) {
             float lat = ffr_absf(fy);
-            if (op->front_lat_mm[side] < 0.0f) {
+            if (op->front_lat_mm[side] < 0.0f && cfg->start_area == FFR_START_HALLWAY && op->rear_ok[side] &&
+                op->rear_lat0_mm[side] >= 0.0f && lat - op->rear_lat0_mm[side] > THROUGH_MM) {
+                /* its first hit this step, far beyond the wall the rear
+                 * ranger passes along: seen through an opening in it */
+                front = 0;
+            } else if (op->front_lat_mm[side] < 0.0f) {
                 op->front_lat_mm[side] = lat;
             } else if (lat - op->front_lat_mm[side] > FRONT_JUMP_MM) {
                 front = 0; /* beyond the wall's end: keep its distance for a wall that resumes */

@@ -138,6 +138,55 @@ TEST(a_wall_across_behind_receding_is_no_wall_seen)
     CHECK(ffr_opening(&op, FFR_SIDE_RIGHT));
 }
 
+/* From a hallway start (the explorer's legs), the front corner ranger's
+ * first hit of a step more than THROUGH_MM (120 mm) farther to the side
+ * than the wall the rear ranger passes along is seen through an opening in
+ * that wall (a door's far side, a room's wall beyond it: +-2.5 cm hallway
+ * start seed 2415, the front right ranger at 446 mm, 385 mm to the side,
+ * the rear one's wall at ~220): it is no wall, and the opening's end is
+ * where the rear ranger last hit its wall. Taken for the wall, its hit put
+ * the end 30 cm past the door's near jamb and the probe met the far one. A
+ * first hit in line with the rear's wall (within THROUGH_MM) is the wall,
+ * and the route's legs (a home start) keep the plain rule, the far hit
+ * putting the end, as before. */
+TEST(from_a_hallway_start_a_front_hit_beyond_the_rear_rangers_wall_is_no_wall_end)
+{
+    ffr_config_t cfg;
+    ffr_openings_t op;
+    ffr_ir_geom_t g;
+    float ir[FFR_IR_COUNT];
+    int area, far;
+    for (area = FFR_START_HOME; area <= FFR_START_HALLWAY; ++area) {
+        for (far = 0; far <= 1; ++far) {
+            float d = 0.0f, rx, ry, fx, fy, rear_at, front_at;
+            int i;
+            fresh_step(&cfg, &op, ir);
+            cfg.start_area = (uint8_t)area;
+            /* the rear ranger passes along a wall, its reading a few mm either way */
+            for (i = 0; i < 40; ++i, d += 3.0f) {
+                ir[FFR_IR_RR] = 226.0f + (float)((i % 5) - 2) * 4.0f;
+                ffr_openings_update(&op, &cfg, rig_geom(&g, &cfg, ir), ir, d, 3.0f, -1);
+            }
+            CHECK(ffr_hit_beside(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_IR_RR, &rx, &ry));
+            rear_at = d + rx; /* its last hit: the next tick, the front one's */
+            CHECK(op.seen[FFR_SIDE_RIGHT] && !ffr_opening(&op, FFR_SIDE_RIGHT));
+            /* the front one meets a face: far beyond that wall, or in line with it */
+            ir[FFR_IR_RF] = far ? 446.0f : 280.0f;
+            CHECK(ffr_hit_beside(&cfg, rig_geom(&g, &cfg, ir), ir, FFR_IR_RF, &fx, &fy));
+            CHECK(far ? ffr_absf(fy) - op.rear_lat0_mm[FFR_SIDE_RIGHT] > 150.0f
+                      : ffr_absf(fy) - op.rear_lat0_mm[FFR_SIDE_RIGHT] < 60.0f);
+            front_at = d + fx;
+            rig_travel(&op, &cfg, ir, &d, 1);
+            /* then open, and the rear ranger leaves its wall */
+            ir[FFR_IR_RF] = FFR_IR_NONE(&cfg);
+            ir[FFR_IR_RR] = FFR_IR_NONE(&cfg);
+            rig_travel(&op, &cfg, ir, &d, 20);
+            CHECK(ffr_opening(&op, FFR_SIDE_RIGHT));
+            CHECK_NEAR(op.open_at_mm[FFR_SIDE_RIGHT], (far && area == FFR_START_HALLWAY) ? rear_at : front_at, 0.5);
+        }
+    }
+}
+
 /* ---- whole openings (GAP events): a corridor of wall segments ---------- */
 
 /* Axis-aligned wall faces, mm: x0 == x1 (across the corridor) or y0 == y1 (along it). */
@@ -427,6 +476,7 @@ SUITE(openings,
       TEST_REF(a_dropout_counts_half),
       TEST_REF(a_hit_jumping_out_is_past_the_wall_end_a_drift_is_followed),
       TEST_REF(a_wall_across_behind_receding_is_no_wall_seen),
+      TEST_REF(from_a_hallway_start_a_front_hit_beyond_the_rear_rangers_wall_is_no_wall_end),
       TEST_REF(gaps_a_door_then_a_hallway_are_two_openings_each_put_by_its_far_edge),
       TEST_REF(gaps_a_step_that_starts_in_an_opening_counts_it_from_its_far_edge),
       TEST_REF(gaps_a_yawed_robot_puts_the_far_edge_along_the_corridor),
