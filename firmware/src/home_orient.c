@@ -1375,18 +1375,25 @@ static int fold_move_if_room(ffr_state_t *st, uint8_t away, float len, uint8_t b
 #define BEHIND_MM 250.0f      /* chosen: the hallway start lost read 229; the won 296 and more */
 static uint8_t front_nearer(const ffr_state_t *st, uint8_t suspects)
 {
-    static const uint8_t pair[2][3] = {{FFR_IR_LR, FFR_IR_LF, FFR_IR_RR}, {FFR_IR_RR, FFR_IR_RF, FFR_IR_LR}};
     uint8_t m = 0u;
     int k;
     for (k = 0; k < 2; ++k) {
-        float r = st->ir_mm[pair[k][0]], f = st->ir_mm[pair[k][1]];
-        if ((suspects >> pair[k][0]) & 1 && (suspects >> pair[k][1]) & 1 && f <= st->cfg.ir_min_mm + NEARER_FRONT_MM &&
-            f < r - NEARER_BY_MM &&
-            st->ir_mm[pair[k][2]] > BEHIND_MM) {
-            m = (uint8_t)(m | (1 << pair[k][1]));
+        /* WALL_PAIRS' first two: a side's front and rear rangers */
+        int fi = WALL_PAIRS[k][0], ri = WALL_PAIRS[k][1], other_rear = WALL_PAIRS[1 - k][1];
+        float f = st->ir_mm[fi], r = st->ir_mm[ri];
+        if ((suspects >> ri) & 1 && (suspects >> fi) & 1 && f <= st->cfg.ir_min_mm + NEARER_FRONT_MM &&
+            f < r - NEARER_BY_MM && st->ir_mm[other_rear] > BEHIND_MM) {
+            m = (uint8_t)(m | (1 << fi));
         }
     }
     return m;
+}
+
+/* The front fold move itself: straight back FRONT_FOLD_MOVE_MM away from
+ * the front suspects, if the floor behind has room (1 when it starts) */
+static int front_move_back(ffr_state_t *st, uint8_t suspects)
+{
+    return fold_move_if_room(st, (uint8_t)(suspects & front_beams(st)), FRONT_FOLD_MOVE_MM, 1u);
 }
 
 /* A rear ranger reading within the fold-back span (above its bottom, up to
@@ -1411,7 +1418,7 @@ static int rear_fold_move(ffr_state_t *st, uint8_t suspects)
     if (front != 0u) {
         /* the wall beside may slant in toward the front corner: the front
          * fold move instead (straight back), as front_fold_move's */
-        return fold_move_if_room(st, (uint8_t)(suspects & front_beams(st)), FRONT_FOLD_MOVE_MM, 1u);
+        return front_move_back(st, suspects);
     }
     return fold_move_if_room(st, (uint8_t)(suspects & rear_beams(st)), REAR_FOLD_MOVE_MM, 0u);
 }
@@ -1428,8 +1435,7 @@ static int rear_fold_move(ffr_state_t *st, uint8_t suspects)
  * the rear move. `suspects` as there. 1 when the move starts. */
 static int front_fold_move(ffr_state_t *st, uint8_t suspects)
 {
-    return suspects != 0u && (suspects & rear_beams(st)) == 0u &&
-           fold_move_if_room(st, (uint8_t)(suspects & front_beams(st)), FRONT_FOLD_MOVE_MM, 1u);
+    return suspects != 0u && (suspects & rear_beams(st)) == 0u && front_move_back(st, suspects);
 }
 
 /* The probe (probe_step) away from the suspects' walls, backward or not */

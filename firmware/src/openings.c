@@ -47,6 +47,8 @@
 /* the front ranger's hit jumping out this far to the side of the wall it was
  * following is past that wall's end (through a door, across a junction), even
  * when it still counts as beside; slow drift is followed at this share per tick */
+#define FRONT_JUMP_MM 70.0f
+#define FRONT_LAT_FOLLOW 0.2f
 /* From a hallway start (the explorer's legs), the front corner ranger's
  * first hit of a step this much farther to the side than the wall the rear
  * ranger passes along (its first hit's) is seen through an opening in that
@@ -62,8 +64,6 @@
  * whole nominal hallway starts (docs/robustness.md, "A front hit through an
  * opening is no wall's end"). The route's legs keep the plain rule. */
 #define THROUGH_MM 120.0f
-#define FRONT_JUMP_MM 70.0f
-#define FRONT_LAT_FOLLOW 0.2f
 /* ffr_openings_t.front_saw: the front ranger saw no wall this step but has
  * read open past the wall the rear ranger sees (a pending opening, above) */
 #define FRONT_PAST_END 2u
@@ -174,13 +174,13 @@ void ffr_openings_update(ffr_openings_t *op, const ffr_config_t *cfg, const ffr_
         int rear = ffr_hit_beside(cfg, g, ir_mm, r, &rx, &ry);
         if (front) {
             float lat = ffr_absf(fy);
-            if (op->front_lat_mm[side] < 0.0f && cfg->start_area == FFR_START_HALLWAY && op->rear_ok[side] &&
-                op->rear_lat0_mm[side] >= 0.0f && lat - op->rear_lat0_mm[side] > THROUGH_MM) {
-                /* its first hit this step, far beyond the wall the rear
-                 * ranger passes along: seen through an opening in it */
-                front = 0;
-            } else if (op->front_lat_mm[side] < 0.0f) {
-                op->front_lat_mm[side] = lat;
+            if (op->front_lat_mm[side] < 0.0f) {
+                if (cfg->start_area == FFR_START_HALLWAY && op->rear_ok[side] && op->rear_lat0_mm[side] >= 0.0f &&
+                    lat - op->rear_lat0_mm[side] > THROUGH_MM) {
+                    front = 0; /* its first hit, far beyond the rear ranger's wall: seen through an opening in it */
+                } else {
+                    op->front_lat_mm[side] = lat;
+                }
             } else if (lat - op->front_lat_mm[side] > FRONT_JUMP_MM) {
                 front = 0; /* beyond the wall's end: keep its distance for a wall that resumes */
             } else {

@@ -1904,9 +1904,6 @@ TEST(back_first_from_a_wall_beside_nearer_at_the_front)
         for (i = 0; i < FFR_IR_COUNT; ++i) {
             ir[i] = seen[i];
         }
-        if (k == 4) {
-            ir[FFR_IR_RF] = cfg.ir_min_mm;
-        }
         if (k == 1) {
             ir[FFR_IR_LR] = 229.0f;
         } else if (k == 2) {
@@ -1914,6 +1911,8 @@ TEST(back_first_from_a_wall_beside_nearer_at_the_front)
         } else if (k == 3) {
             ir[FFR_IR_RF] = 110.0f;
             ir[FFR_IR_RR] = 129.0f;
+        } else if (k == 4) {
+            ir[FFR_IR_RF] = cfg.ir_min_mm;
         }
         first_move(&r, &cfg, ir);
         if (k == 4) {
