@@ -382,9 +382,11 @@ int ffr_orient_aim(const ffr_home_orient_t *o, const ffr_config_t *cfg, float di
  * of two), along each of the two square axes. */
 void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
                        float *dx, float *dy);
-/* the same of bins already in the walls' frame, (cx, cy) in odometry's (the firmware's tick) */
+/* the same of bins already in the walls' frame, (cx, cy) in odometry's (the firmware's tick);
+ * toward_mm: the wall's distance as measured, when the shift runs along one axis (within 15
+ * degrees) toward a wall across it, else 0 */
 void ffr_orient_centre_walls(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
-                             float *dx, float *dy);
+                             float *dx, float *dy, float *toward_mm);
 /* Record one tick's hits (the sweep). */
 void ffr_orient_record(ffr_home_orient_t *o, const ffr_config_t *cfg, const ffr_odometry_t *odo,
                        const ffr_ir_geom_t *g, const float ir_mm[FFR_IR_COUNT]);

@@ -711,12 +711,12 @@ void ffr_orient_across4(const ffr_home_orient_t *o, float cu, float cv, float fr
 }
 
 void ffr_orient_centre_walls(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
-                             float *dx, float *dy)
+                             float *dx, float *dy, float *toward_mm)
 {
     /* a hallway's width from the body's side, as far as a ranger may read long */
     float near = (2.0f * cfg->wall_target_mm + cfg->body_half_width_mm) * (1.0f + RANGE_LONG_FRAC);
     float c0 = ffr_cosf(dir0), s0 = ffr_sinf(dir0);
-    float free_mm[4], sk[2];
+    float free_mm[4], sk[2], to[2];
     int k;
     ffr_orient_across4(o, cx * c0 + cy * s0, cy * c0 - cx * s0, free_mm);
     for (k = 0; k < 2; ++k) {
@@ -724,23 +724,32 @@ void ffr_orient_centre_walls(const ffr_home_orient_t *o, const ffr_config_t *cfg
         float b = free_mm[k + 2];
         float s = 0.0f; /* along dir: the nearer wall at wall_target_mm (in a contest
                          * hallway that is its middle; a far wall may be a wall's end) */
+        float t = 0.0f; /* and that wall's distance, if the shift goes toward it */
         if (a < near && a <= b) {
             s = a - cfg->wall_target_mm;
+            t = s > 0.0f ? a : 0.0f;
         } else if (b < near) {
             s = cfg->wall_target_mm - b;
+            t = s < 0.0f ? b : 0.0f;
         }
         sk[k] = s;
+        to[k] = t;
     }
     *dx = sk[0] * c0 - sk[1] * s0;
     *dy = sk[0] * s0 + sk[1] * c0;
+    /* the shift runs along one axis (within ACROSS_CONE) toward its wall */
+    *toward_mm = ffr_absf(sk[1]) <= ACROSS_CONE * ffr_absf(sk[0]) ? to[0]
+                 : ffr_absf(sk[0]) <= ACROSS_CONE * ffr_absf(sk[1]) ? to[1]
+                                                                    : 0.0f;
 }
 
 void ffr_orient_centre(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float cx, float cy,
                        float *dx, float *dy)
 {
     ffr_home_orient_t w = *o;
+    float toward;
     ffr_orient_to_walls(&w, dir0);
-    ffr_orient_centre_walls(&w, cfg, dir0, cx, cy, dx, dy);
+    ffr_orient_centre_walls(&w, cfg, dir0, cx, cy, dx, dy, &toward);
 }
 
 int ffr_orient_skip(const ffr_home_orient_t *o, const ffr_config_t *cfg, float dir0, float heading, float cx,
@@ -1971,6 +1980,45 @@ static int shift_back_blocked(ffr_state_t *st)
     return r + rear < ffr_orient_turn_radius_mm(cfg) && r < o->back_chord_mm - REAR_NEARING_MM;
 }
 
+/* A shift toward a wall across its axis goes by the sweep's reading of that
+ * wall from afar: a GP2D12 reads 20-30 % short at 40-80 cm (its datasheet
+ * spread, RANGE_SHORT_FRAC), and a wall 78 cm off read as 59 cm left the
+ * robot 15 cm short of a corridor's middle, off its line at the mouth,
+ * where the wall following's first leg met the jamb (hallway +-2.5 cm
+ * start seed 1029; eight starts of that row, docs/robustness.md "A shift
+ * toward a wall ends on the front ranger"). Driven forward along the axis
+ * (within 15 degrees), the front ranger looks at that wall and reads it
+ * nearer, so better, as the robot goes. If it puts the wall more than
+ * SHIFT_TOL_MM beyond where the length would stand the body, the shift goes
+ * on to where the wall ahead is wall_target_mm off (the stand it is for),
+ * as far as a wall read short may be (leg_mm), and only on floor free ahead
+ * of the body. Otherwise as before: the length, or front_stop_mm (ending
+ * every such shift on the front ranger moved stands that were right by a
+ * few cm, and lost a +-5 cm start whole). No reading (the wall beyond the
+ * ranger's span): the length. The shift's distance left. */
+#define SHIFT_FAR_FRAC (RANGE_SHORT_FRAC / (1.0f - RANGE_SHORT_FRAC))
+static float shift_toward(const ffr_state_t *st, float left)
+{
+    const ffr_home_orient_t *o = &st->orient;
+    float f, cap;
+    if (o->reverse || o->near_mm >= 65535.0f) {
+        return left;
+    }
+    f = ffr_front_now(&st->cfg, &st->odo, st->ir_mm);
+    if (f >= 1.0e6f) {
+        return left;
+    }
+    cap = o->leg_mm - st->odo.dist_mm;
+    f -= st->cfg.wall_target_mm;
+    if (f <= left + SHIFT_TOL_MM || end_room(st, 0, BAND_MARGIN_MM, 0u) <= st->cfg.body_front_mm + ESCAPE_FREE_MM) {
+        /* the wall where measured (or nearer: front_stop_mm stops the
+         * shift), or on past the length only on floor free ahead of the
+         * body, as an escape's */
+        return left;
+    }
+    return f < cap ? f : cap;
+}
+
 /* odometry's frame turned by -rot about its origin: `rot` becomes heading 0 */
 static void reframe(ffr_odometry_t *odo, float rot)
 {
@@ -2394,11 +2442,11 @@ int ffr_orient_step(ffr_state_t *st)
         return 0;
     }
     if (o->phase == PH_CENTRE) {
-        float dx, dy, cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
+        float dx, dy, toward, cx = st->odo.x_mm - o->x0_mm, cy = st->odo.y_mm - o->y0_mm;
         /* the bins into the walls' frame, once: the centre reads them so,
          * and the aim (next tick or after the shift) */
         ffr_orient_to_walls(o, o->dir0_rad);
-        ffr_orient_centre_walls(o, cfg, o->dir0_rad, cx, cy, &dx, &dy);
+        ffr_orient_centre_walls(o, cfg, o->dir0_rad, cx, cy, &dx, &dy, &toward);
         if (FFR_HOME_SKIP_MM > 0.0f && dx * dx + dy * dy > SHIFT_TOL_MM * SHIFT_TOL_MM) {
             int k = ffr_orient_skip(o, cfg, o->dir0_rad, st->odo.heading_rad, cx, cy, dx, dy, FFR_HOME_SKIP_MM);
             if (k >= 0) {
@@ -2414,6 +2462,9 @@ int ffr_orient_step(ffr_state_t *st)
             o->reverse = ffr_absf(back - st->odo.heading_rad) < ffr_absf(fwd - st->odo.heading_rad);
             o->target_rad = o->reverse ? back : fwd;
             o->goal_mm = ffr_sqrtf(dx * dx + dy * dy);
+            /* driven forward toward the wall it goes by: the front ranger
+             * ends it (shift_toward; the sweep's bins are free now) */
+            o->near_mm = !o->reverse && toward > 0.0f ? toward : 65535.0f;
             o->phase = PH_SHIFT_TURN;
         } else {
             o->phase = PH_AIM;
@@ -2427,6 +2478,9 @@ int ffr_orient_step(ffr_state_t *st)
         ffr_stop(st);
         o->goal_mm += st->odo.dist_mm; /* the shift's length, from here */
         o->back_chord_mm = 65535.0f;
+        /* the farthest the front ranger may take a shift toward its wall:
+         * as far as the wall may be, read short (SHIFT_FAR_FRAC) */
+        o->leg_mm = o->goal_mm + SHIFT_FAR_FRAC * o->near_mm;
         o->phase = PH_SHIFT_DRIVE;
     }
     if (o->phase == PH_SHIFT_DRIVE) {
@@ -2437,6 +2491,7 @@ int ffr_orient_step(ffr_state_t *st)
             return 0;
         }
         blocked = o->reverse ? shift_back_blocked(st) : ffr_front_distance(cfg, st->ir_mm) < cfg->front_stop_mm;
+        left = shift_toward(st, left);
         if (left > 0.0f && !blocked) {
             float v = ffr_stopping_speed(left, cfg->cruise_speed_mm_s);
             ffr_drive_heading(st, o->target_rad, o->reverse ? -v : v);

@@ -2455,6 +2455,84 @@ TEST(a_shift_backward_stops_where_a_rear_ranger_reaches_its_bottom)
     CHECK(x < -290.0f);
 }
 
+/* A shift driven forward (phase 2, its turn done at once, then 3) of
+ * goal_mm toward a wall across its axis that the sweep measured toward_mm
+ * off (0: the shift goes by no wall ahead), among the walls of `box`, from
+ * the origin heading 0, and the orientation on to its end: where the shift
+ * stopped (odometry x); *clear 0 if a corner met a wall on the way */
+static float shift_forward(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float toward_mm,
+                           float goal_mm, int *clear)
+{
+    float x_shift = 0.0f;
+    int i;
+    rig_init(r, cfg);
+    box_tick_rr(r, cfg, box, walls, 0.0f); /* the readings in */
+    ffr_orient_begin(&r->st);
+    r->st.orient.phase = 2u; /* PH_SHIFT_TURN, already facing the way: the drive next */
+    r->st.orient.reverse = 0u;
+    r->st.orient.target_rad = r->st.odo.heading_rad;
+    r->st.orient.goal_mm = goal_mm;
+    r->st.orient.near_mm = toward_mm > 0.0f ? toward_mm : 65535.0f; /* as the centre's tick sets it */
+    r->st.started = 1;
+    *clear = 1;
+    for (i = 0; i < 1500 && r->st.state == FFR_ST_ORIENT; ++i) {
+        box_tick_rr(r, cfg, box, walls, 0.0f);
+        if (r->st.state != FFR_ST_ORIENT) {
+            break;
+        }
+        *clear &= box_clear(box, walls, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad);
+        if (r->st.orient.phase == 2u || r->st.orient.phase == 3u) {
+            x_shift = r->st.odo.x_mm;
+        }
+    }
+    CHECK(r->st.state != FFR_ST_ORIENT); /* the aim's turn done: the route begins */
+    return x_shift;
+}
+
+TEST(a_shift_toward_a_wall_read_short_ends_on_the_front_ranger)
+{
+    /* hallway +-2.5 cm start seed 1029 (`ffr sweep --start hallway
+     * --arena-jitter 0.025 --noise datasheet --candles default`): the sweep
+     * read a corridor's far wall, 780 mm off, as 589 mm, and the shift of
+     * 359 mm toward it left the body 150 mm short of the corridor's middle;
+     * the wall following's first leg met the mouth's jamb. Here that wall
+     * 780 mm ahead, walls 230 mm off both sides: the front ranger takes the
+     * shift on to where the wall ahead is wall_target_mm off the axle */
+    static const float corridor[3][3] = {{1.0f, 0.0f, 780.0f}, {0.0f, 1.0f, 230.0f}, {0.0f, -1.0f, 230.0f}};
+    static const float open[2][3] = {{0.0f, 1.0f, 230.0f}, {0.0f, -1.0f, 230.0f}};
+    static const float near[3][3] = {{1.0f, 0.0f, 500.0f}, {0.0f, 1.0f, 230.0f}, {0.0f, -1.0f, 230.0f}};
+    static const float slant[3][3] = {{1.0f, 0.0f, 780.0f}, {0.208f, 0.978f, 230.0f}, {0.0f, -1.0f, 230.0f}};
+    ffr_config_t cfg;
+    rig_t r;
+    float x;
+    int clear;
+    ffr_config_default(&cfg);
+    x = shift_forward(&r, &cfg, corridor, 3, 589.0f, 359.0f, &clear);
+    CHECK(clear);
+    CHECK(ffr_absf(780.0f - x - cfg.wall_target_mm) < 25.0f);
+    /* the same shift going by no wall ahead: its length as measured */
+    x = shift_forward(&r, &cfg, corridor, 3, 0.0f, 359.0f, &clear);
+    CHECK(ffr_absf(x - 359.0f) < 15.0f);
+    /* nothing in the front ranger's span: the length as measured */
+    x = shift_forward(&r, &cfg, open, 2, 589.0f, 359.0f, &clear);
+    CHECK(ffr_absf(x - 359.0f) < 15.0f);
+    /* no farther than the wall may be when read short: the wall 780 mm
+     * off measured as 480 (a shift of 250) ends 120 mm short */
+    x = shift_forward(&r, &cfg, corridor, 3, 480.0f, 250.0f, &clear);
+    CHECK(clear);
+    CHECK(x < 250.0f + 0.34f * 480.0f + 10.0f && x > 250.0f + 0.33f * 480.0f - 25.0f);
+    /* read long, nearer than measured: stopped at the stand */
+    x = shift_forward(&r, &cfg, near, 3, 589.0f, 359.0f, &clear);
+    CHECK(clear);
+    CHECK(ffr_absf(500.0f - x - cfg.wall_target_mm) < 25.0f);
+    /* on past its length only on floor free ahead: the walls' direction
+     * taken 12 degrees off (hallway start seed 1958), the left wall closing
+     * in on the way (its front corner meets it ~515 mm on) */
+    x = shift_forward(&r, &cfg, slant, 3, 589.0f, 359.0f, &clear);
+    CHECK(clear);
+    CHECK(x < 450.0f);
+}
+
 /* box_readings, both rear rangers parts whose output peaks above the span's
  * bottom: 28 mm long at 8 cm (their peak, 108 mm as read) and beyond, folded
  * back nearer (2.5 mm longer per mm nearer): such a part never reads its
@@ -3083,4 +3161,5 @@ SUITE(home_orient,
       TEST_REF(from_home_both_rangers_open_on_the_sweeps_side_the_first_look_steps_forward),
       TEST_REF(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind),
       TEST_REF(a_move_back_stops_when_a_rear_ranger_passes_its_peak),
-      TEST_REF(a_shift_backward_stops_where_a_rear_ranger_reaches_its_bottom));
+      TEST_REF(a_shift_backward_stops_where_a_rear_ranger_reaches_its_bottom),
+      TEST_REF(a_shift_toward_a_wall_read_short_ends_on_the_front_ranger));
