@@ -390,7 +390,7 @@ typedef struct {
     uint8_t after_shift;           /* room to turn looked for after the shift: its move ends in the aim */
     uint8_t slant_watch;           /* this straight escape began clear of a wall across it at a slant: it stops short of one */
     float back_chord_mm;           /* the rear pair's chord behind when this straight leg began (rear_chord_room) */
-    float leg_mm;                  /* the escape's arc legs' length; a fold move's length; a shift's farthest end */
+    float leg_mm;                  /* the escape's arc legs' length; a fold move's length */
     float near_mm;                 /* nearest wall line seen in the sweep, from where it stands; a shift
                                       forward toward a wall across: its measure (65535: none) */
     float near_x_mm, near_y_mm;    /* its nearest point (odometry, from the robot) */

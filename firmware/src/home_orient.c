@@ -1991,7 +1991,7 @@ static int shift_back_blocked(ffr_state_t *st)
  * nearer, so better, as the robot goes. If it puts the wall more than
  * SHIFT_TOL_MM beyond where the length would stand the body, the shift goes
  * on to where the wall ahead is wall_target_mm off (the stand it is for),
- * as far as a wall read short may be (leg_mm), and only on floor free ahead
+ * as far as a wall read short may be (SHIFT_FAR_FRAC), and only on floor free ahead
  * of the body. Otherwise as before: the length, or front_stop_mm (ending
  * every such shift on the front ranger moved stands that were right by a
  * few cm, and lost a +-5 cm start whole). No reading (the wall beyond the
@@ -2001,14 +2001,14 @@ static float shift_toward(const ffr_state_t *st, float left)
 {
     const ffr_home_orient_t *o = &st->orient;
     float f, cap;
-    if (o->reverse || o->near_mm >= 65535.0f) {
-        return left;
+    if (o->near_mm >= 65535.0f) {
+        return left; /* not toward a wall across, or driven backward (PH_CENTRE) */
     }
     f = ffr_front_now(&st->cfg, &st->odo, st->ir_mm);
     if (f >= 1.0e6f) {
         return left;
     }
-    cap = o->leg_mm - st->odo.dist_mm;
+    cap = o->goal_mm + SHIFT_FAR_FRAC * o->near_mm - st->odo.dist_mm; /* as far as the wall may be, read short */
     f -= st->cfg.wall_target_mm;
     if (f <= left + SHIFT_TOL_MM || end_room(st, 0, BAND_MARGIN_MM, 0u) <= st->cfg.body_front_mm + ESCAPE_FREE_MM) {
         /* the wall where measured (or nearer: front_stop_mm stops the
@@ -2478,9 +2478,6 @@ int ffr_orient_step(ffr_state_t *st)
         ffr_stop(st);
         o->goal_mm += st->odo.dist_mm; /* the shift's length, from here */
         o->back_chord_mm = 65535.0f;
-        /* the farthest the front ranger may take a shift toward its wall:
-         * as far as the wall may be, read short (SHIFT_FAR_FRAC) */
-        o->leg_mm = o->goal_mm + SHIFT_FAR_FRAC * o->near_mm;
         o->phase = PH_SHIFT_DRIVE;
     }
     if (o->phase == PH_SHIFT_DRIVE) {

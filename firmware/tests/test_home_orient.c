@@ -2364,13 +2364,15 @@ static int orient_in_box(const ffr_config_t *cfg, const float box[][3], int wall
     return run.clear;
 }
 
-/* A shift driven backward (phase 2, its turn done at once, then 3) of
- * goal_mm among the walls of `box`, from the origin heading 0, the rear
- * right part reading rr_long mm long, and the orientation on to its end
- * (the look after the shift, the aim's turn): where the shift stopped
- * (odometry x); *clear 0 if a corner met a wall on the way */
-static float shift_back(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float rr_long,
-                        float goal_mm, int *clear)
+/* A shift (phase 2, its turn done at once, then 3) of goal_mm, driven
+ * backward or forward, among the walls of `box`, from the origin heading 0,
+ * the rear right part reading rr_long mm long, toward a wall across its axis
+ * that the sweep measured toward_mm off (0: by no wall ahead; as the
+ * centre's tick sets near_mm), and the orientation on to its end (the look
+ * after the shift, the aim's turn): where the shift stopped (odometry x);
+ * *clear 0 if a corner met a wall on the way */
+static float shift_run(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float rr_long,
+                       uint8_t backward, float toward_mm, float goal_mm, int *clear)
 {
     float x_shift = 0.0f;
     int i;
@@ -2378,9 +2380,10 @@ static float shift_back(rig_t *r, const ffr_config_t *cfg, const float box[][3],
     box_tick_rr(r, cfg, box, walls, rr_long); /* the readings in */
     ffr_orient_begin(&r->st);
     r->st.orient.phase = 2u; /* PH_SHIFT_TURN, already facing the way: the drive next */
-    r->st.orient.reverse = 1u;
+    r->st.orient.reverse = backward;
     r->st.orient.target_rad = r->st.odo.heading_rad;
     r->st.orient.goal_mm = goal_mm;
+    r->st.orient.near_mm = toward_mm > 0.0f ? toward_mm : 65535.0f;
     r->st.started = 1;
     *clear = 1;
     for (i = 0; i < 1500 && r->st.state == FFR_ST_ORIENT; ++i) {
@@ -2395,6 +2398,18 @@ static float shift_back(rig_t *r, const ffr_config_t *cfg, const float box[][3],
     }
     CHECK(r->st.state != FFR_ST_ORIENT); /* the aim's turn done: the route begins */
     return x_shift;
+}
+
+static float shift_back(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float rr_long,
+                        float goal_mm, int *clear)
+{
+    return shift_run(r, cfg, box, walls, rr_long, 1u, 0.0f, goal_mm, clear);
+}
+
+static float shift_forward(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float toward_mm,
+                           float goal_mm, int *clear)
+{
+    return shift_run(r, cfg, box, walls, 0.0f, 0u, toward_mm, goal_mm, clear);
 }
 
 TEST(a_shift_backward_stops_with_room_to_turn_before_the_wall_behind)
@@ -2453,40 +2468,6 @@ TEST(a_shift_backward_stops_where_a_rear_ranger_reaches_its_bottom)
     CHECK(x > -200.0f); /* cut short */
     x = shift_back(&r, &cfg, hallway, 2, 0.0f, 300.0f, &clear);
     CHECK(x < -290.0f);
-}
-
-/* A shift driven forward (phase 2, its turn done at once, then 3) of
- * goal_mm toward a wall across its axis that the sweep measured toward_mm
- * off (0: the shift goes by no wall ahead), among the walls of `box`, from
- * the origin heading 0, and the orientation on to its end: where the shift
- * stopped (odometry x); *clear 0 if a corner met a wall on the way */
-static float shift_forward(rig_t *r, const ffr_config_t *cfg, const float box[][3], int walls, float toward_mm,
-                           float goal_mm, int *clear)
-{
-    float x_shift = 0.0f;
-    int i;
-    rig_init(r, cfg);
-    box_tick_rr(r, cfg, box, walls, 0.0f); /* the readings in */
-    ffr_orient_begin(&r->st);
-    r->st.orient.phase = 2u; /* PH_SHIFT_TURN, already facing the way: the drive next */
-    r->st.orient.reverse = 0u;
-    r->st.orient.target_rad = r->st.odo.heading_rad;
-    r->st.orient.goal_mm = goal_mm;
-    r->st.orient.near_mm = toward_mm > 0.0f ? toward_mm : 65535.0f; /* as the centre's tick sets it */
-    r->st.started = 1;
-    *clear = 1;
-    for (i = 0; i < 1500 && r->st.state == FFR_ST_ORIENT; ++i) {
-        box_tick_rr(r, cfg, box, walls, 0.0f);
-        if (r->st.state != FFR_ST_ORIENT) {
-            break;
-        }
-        *clear &= box_clear(box, walls, r->st.odo.x_mm, r->st.odo.y_mm, r->st.odo.heading_rad);
-        if (r->st.orient.phase == 2u || r->st.orient.phase == 3u) {
-            x_shift = r->st.odo.x_mm;
-        }
-    }
-    CHECK(r->st.state != FFR_ST_ORIENT); /* the aim's turn done: the route begins */
-    return x_shift;
 }
 
 TEST(a_shift_toward_a_wall_read_short_ends_on_the_front_ranger)
